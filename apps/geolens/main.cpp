@@ -1,0 +1,275 @@
+// geolens: magnify regions of an image with the geometric focus+context lens.
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geolens/errors.h"
+#include "geolens/geometric_lens.h"
+#include "geolens/image.h"
+#include "geolens/mesh_io.h"
+#include "geolens/render.h"
+#include "stats.h"
+
+namespace fs = std::filesystem;
+using namespace geolens;
+
+namespace {
+
+struct MagnifyArgs {
+  std::string input, output, stats, export_mesh, before_after, size;
+  std::vector<std::string> lenses;
+  double zoom = 2.0;
+  std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
+              boundary = "sliding";
+  double alpha = 0.0, tolerance = 1e-3;
+  int mesh = 100, max_iterations = 100;
+};
+
+double parse_number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  require(!text.empty() && end == text.c_str() + text.size(), "--lens",
+          what + " '" + text + "' is not a number");
+  return value;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1) {
+    parts.push_back(text.substr(start, at - start));
+  }
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+// "circle:CX,CY,R[:ZOOM]" in source pixels.
+Lens parse_lens(const std::string& spec, double default_zoom, Profile profile) {
+  const std::vector<std::string> parts = split(spec, ':');
+  require(parts.size() >= 2 && parts.size() <= 3 && parts[0] == "circle", "--lens",
+          "expected circle:CX,CY,R[:ZOOM], got '" + spec + "'");
+  const std::vector<std::string> numbers = split(parts[1], ',');
+  require(numbers.size() == 3, "--lens", "expected circle:CX,CY,R[:ZOOM], got '" + spec + "'");
+  Lens lens;
+  lens.roi.center = {parse_number(numbers[0], "centre x"), parse_number(numbers[1], "centre y")};
+  lens.roi.radius = parse_number(numbers[2], "radius");
+  lens.zoom = parts.size() == 3 ? parse_number(parts[2], "zoom") : default_zoom;
+  lens.profile = profile;
+  return lens;
+}
+
+// "WxH", each side in [1, 16384].
+std::pair<int, int> parse_size(const std::string& text) {
+  const std::vector<std::string> parts = split(text, 'x');
+  auto side = [&](const std::string& s) {
+    char* end = nullptr;
+    const long v = std::strtol(s.c_str(), &end, 10);
+    require(!s.empty() && end == s.c_str() + s.size() && v >= 1 && v <= 16384, "--size",
+            "expected WxH with sides in [1, 16384], got '" + text + "'");
+    return int(v);
+  };
+  require(parts.size() == 2, "--size", "expected WxH, got '" + text + "'");
+  return {side(parts[0]), side(parts[1])};
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code error;
+  if (fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
+  return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+}
+
+// An output path must be in an existing folder and must not be the input.
+void check_output_path(const std::string& path, const std::string& input, const char* option) {
+  const fs::path parent = fs::path(path).parent_path();
+  require(parent.empty() || fs::is_directory(parent), option,
+          "folder '" + parent.string() + "' of '" + path + "' does not exist");
+  require(!same_file(input, path), option, "'" + path + "' is the input file");
+}
+
+// Draws a 2-pixel outline of each lens circle (scaled to the image) in red.
+void outline_lenses(Image& image, const std::vector<Lens>& lenses, double scale_x, double scale_y) {
+  for (const Lens& lens : lenses) {
+    const double r = lens.roi.radius * std::sqrt(scale_x * scale_y);
+    const int steps = int(2 * M_PI * r * 2) + 8;
+    for (int s = 0; s < steps; ++s) {
+      const double a = 2 * M_PI * s / steps;
+      for (double dr = -1; dr <= 1; dr += 1) {
+        const int x = int(lens.roi.center.x() * scale_x + (r + dr) * std::cos(a));
+        const int y = int(lens.roi.center.y() * scale_y + (r + dr) * std::sin(a));
+        if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+        uint8_t* p = image.at(x, y);
+        const uint8_t red[4] = {220, 30, 30, 255};
+        for (int c = 0; c < image.channels; ++c) p[c] = image.channels < 3 ? 80 : red[c];
+      }
+    }
+  }
+}
+
+// Input (with the lens outlines) and output side by side, 8 pixels apart.
+Image before_after(const Image& before, const Image& after) {
+  const int gap = 8;
+  Image out(before.width + gap + after.width, std::max(before.height, after.height), after.channels,
+            255);
+  for (int y = 0; y < before.height; ++y)
+    std::copy_n(before.at(0, y), size_t(before.width) * before.channels, out.at(0, y));
+  for (int y = 0; y < after.height; ++y)
+    std::copy_n(after.at(0, y), size_t(after.width) * after.channels,
+                out.at(before.width + gap, y));
+  return out;
+}
+
+WarpMesh identity_warp(const Grid& grid, int width, int height) {
+  return WarpMesh{grid.F, grid.V, grid.V, width, height};
+}
+
+int run_magnify(const MagnifyArgs& a) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  // Validate everything before any work.
+  require(is_writable_image_path(a.output), "--output",
+          "'" + a.output + "' must end in .png, .jpg or .jpeg");
+  check_output_path(a.output, a.input, "--output");
+  if (!a.stats.empty()) check_output_path(a.stats, a.input, "--stats");
+  if (!a.export_mesh.empty())
+    check_output_path(a.export_mesh + "_3d.obj", a.input, "--export-mesh");
+  if (!a.before_after.empty()) {
+    require(is_writable_image_path(a.before_after), "--before-after",
+            "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
+    check_output_path(a.before_after, a.input, "--before-after");
+  }
+  LensOptions options;
+  options.mesh = a.mesh;
+  options.texture = parse_texture_weights(a.texture);
+  options.flatten.weights = parse_flatten_weights(a.weights);
+  options.flatten.metric = parse_metric(a.metric);
+  options.flatten.alpha = a.alpha;
+  options.flatten.boundary = parse_boundary(a.boundary);
+  options.flatten.tolerance = a.tolerance;
+  options.flatten.max_iterations = a.max_iterations;
+  validate(options);
+  require(std::isfinite(a.zoom) && a.zoom >= 1 && a.zoom <= 8, "--zoom",
+          "zoom must be in [1, 8], got " + std::to_string(a.zoom));
+  const Profile profile = parse_profile(a.profile);
+  std::vector<Lens> lenses;
+  for (const std::string& spec : a.lenses) lenses.push_back(parse_lens(spec, a.zoom, profile));
+
+  const Image source = load_image(a.input);
+  for (const Lens& lens : lenses) validate_lens(lens, source.width, source.height);
+  const auto [width, height] =
+      a.size.empty() ? std::pair{source.width, source.height} : parse_size(a.size);
+
+  const GeometricLens lens(source.width, source.height, options);
+  const LensResult result = lens.solve(lenses);
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    if (std::abs(result.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
+      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << result.zoom_measured[k]
+                << " of the " << lenses[k].zoom << " requested\n";
+    }
+  }
+
+  const auto render_start = Clock::now();
+  const MipPyramid pyramid(source);
+  RenderOptions render_options;
+  render_options.width = width;
+  render_options.height = height;
+  const Image output = render(result.warp, pyramid, render_options);
+  const double render_ms =
+      std::chrono::duration<double, std::milli>(Clock::now() - render_start).count();
+
+  save_image(a.output, output);
+  if (!a.before_after.empty()) {
+    Image before =
+        render(identity_warp(lens.grid(), source.width, source.height), pyramid, render_options);
+    outline_lenses(before, lenses, double(width) / source.width, double(height) / source.height);
+    save_image(a.before_after, before_after(before, output));
+  }
+  if (!a.export_mesh.empty()) {
+    write_obj(a.export_mesh + "_3d.obj", result.lifted, result.warp.F);
+    write_obj(a.export_mesh + "_flat.obj", result.flat, result.warp.F);
+  }
+  if (!a.stats.empty()) {
+    const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const nlohmann::json stats = cli::make_stats(lenses, options, result, render_ms, total_ms);
+    const std::string temporary = a.stats + ".tmp-" + std::to_string(getpid());
+    {
+      std::ofstream out(temporary);
+      out << stats.dump(2) << '\n';
+      if (!out.flush()) throw IoError("--stats: cannot write '" + a.stats + "'");
+    }
+    fs::rename(temporary, a.stats);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"geolens: magnify regions of an image with a geometric focus+context lens"};
+  app.set_version_flag("--version", std::string("geolens ") + GEOLENS_VERSION);
+  app.require_subcommand(1);
+  MagnifyArgs a;
+  CLI::App* magnify = app.add_subcommand("magnify", "magnify lens regions of an image");
+  magnify->add_option("input", a.input, "input image (PNG or JPEG)")->required();
+  magnify->add_option("-o,--output", a.output, "output image (.png, .jpg)")->required();
+  magnify
+      ->add_option("--lens", a.lenses,
+                   "circle:CX,CY,R[:ZOOM] in source pixels; repeat for several lenses")
+      ->required();
+  magnify->add_option("--zoom", a.zoom, "zoom of lenses that give none, in [1, 8]")
+      ->capture_default_str();
+  magnify->add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
+      ->capture_default_str();
+  magnify->add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
+      ->capture_default_str();
+  magnify->add_option("--metric", a.metric, "paper (Eq. 6 alpha blend) or spectrum (ARAP..ASAP)")
+      ->capture_default_str();
+  magnify->add_option("--alpha", a.alpha, "metric blend: paper [0, 1), spectrum [0, 1]")
+      ->capture_default_str();
+  magnify->add_option("--weights", a.weights, "flattening weights: paper or cotan")
+      ->capture_default_str();
+  magnify->add_option("--texture", a.texture, "texture map weights: cotan or mvc")
+      ->capture_default_str();
+  magnify->add_option("--boundary", a.boundary, "image border: sliding, fixed or free")
+      ->capture_default_str();
+  magnify->add_option("--size", a.size, "output size WxH (default: the input's)");
+  magnify->add_option("--tolerance", a.tolerance, "relative energy change that stops iterating")
+      ->capture_default_str();
+  magnify->add_option("--max-iterations", a.max_iterations, "cap on flattening iterations")
+      ->capture_default_str();
+  magnify->add_option("--stats", a.stats, "write run statistics as JSON");
+  magnify->add_option("--export-mesh", a.export_mesh,
+                      "write PREFIX_3d.obj (lifted) and PREFIX_flat.obj (flattened)");
+  magnify->add_option("--before-after", a.before_after,
+                      "write the input (lenses outlined) and the output side by side");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "geolens: error: " << e.what() << " (see geolens --help)\n";
+    return 2;
+  }
+  try {
+    if (magnify->parsed()) return run_magnify(a);
+  } catch (const InvalidInput& e) {
+    std::cerr << "geolens: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "geolens: failed: " << e.what() << '\n';
+    return 1;
+  }
+  return 2;
+}

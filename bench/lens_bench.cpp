@@ -1,0 +1,96 @@
+// Stage timings of the geometric lens at the paper's grid sizes (100x100 and 200x200 vertices).
+
+#include <benchmark/benchmark.h>
+
+#include "geolens/flatten.h"
+#include "geolens/geometric_lens.h"
+#include "geolens/grid.h"
+#include "geolens/lift.h"
+#include "geolens/texture_map.h"
+
+namespace geolens {
+namespace {
+
+// The case scaled to the grid: a 1024 px image, r = 150 px at the centre, the bump
+// height the calibration finds for zoom 2 with the default options (h0 = 0.76 r).
+struct Scene {
+  explicit Scene(int mesh) : grid(make_grid(1024, 1024, mesh)) {
+    lens.roi.center = {512, 512};
+    lens.roi.radius = 150;
+    lifted = lift(grid.V, {lens}, {0.76 * 150});
+    fixed.resize(grid.sides.size());
+    for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || grid.sides[i];
+  }
+  Grid grid;
+  Lens lens;
+  Lifted lifted;
+  std::vector<char> fixed;
+};
+
+void BM_Lift(benchmark::State& state) {
+  const Scene s(int(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(lift(s.grid.V, {s.lens}, {0.76 * 150}));
+  state.counters["vertices"] = double(s.grid.V.rows());
+}
+
+void BM_Texture(benchmark::State& state) {
+  const Scene s(int(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        harmonic_texture(s.lifted.V, s.grid.F, s.fixed, s.grid.V, TextureWeights::kCotan));
+  state.counters["vertices"] = double(s.grid.V.rows());
+}
+
+// Assembling the global matrix and its sparse Cholesky factorization (the paper's
+// "pre-processing").
+void BM_Factorize(benchmark::State& state) {
+  const Scene s(int(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        Flattener(s.lifted.V, s.grid.F, s.lifted.level, s.grid.sides, FlattenOptions{}));
+  state.counters["vertices"] = double(s.grid.V.rows());
+}
+
+// One local/global iteration (the paper's per-iteration figure).
+void BM_Iteration(benchmark::State& state) {
+  const Scene s(int(state.range(0)));
+  FlattenOptions o;
+  o.max_iterations = 1;
+  const Flattener flattener(s.lifted.V, s.grid.F, s.lifted.level, s.grid.sides, o);
+  for (auto _ : state) benchmark::DoNotOptimize(flattener.solve(s.grid.V));
+  state.counters["vertices"] = double(s.grid.V.rows());
+}
+
+// The whole flattening to the paper's 0.1 % stop, factorization included.
+void BM_Flatten(benchmark::State& state) {
+  const Scene s(int(state.range(0)));
+  int iterations = 0;
+  for (auto _ : state) {
+    const FlattenResult r = flatten(s.lifted.V, s.grid.F, s.lifted.level, s.grid.sides, {});
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+
+// A full magnify: calibration to zoom 2 (several solves) and everything they contain.
+void BM_SolveZoom2(benchmark::State& state) {
+  LensOptions o;
+  o.mesh = int(state.range(0));
+  const GeometricLens lens(1024, 1024, o);
+  Lens l;
+  l.roi.center = {512, 512};
+  l.roi.radius = 150;
+  int solves = 0;
+  for (auto _ : state) solves = lens.solve({l}).solves;
+  state.counters["solves"] = solves;
+}
+
+BENCHMARK(BM_Lift)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Texture)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Factorize)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Iteration)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Flatten)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SolveZoom2)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace geolens

@@ -1,0 +1,30 @@
+#pragma once
+// Exceptions thrown by geolens. They stay on in release builds; every message names the
+// function that threw and the offending value.
+
+#include <stdexcept>
+#include <string>
+
+namespace geolens {
+
+/// The caller passed something invalid: a value out of range, a size mismatch, an unreadable
+/// or corrupt input file. The CLI maps it to exit code 2.
+struct InvalidInput : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+/// A numerical failure at run time (a factorization that is not positive definite, ...).
+/// The CLI maps it to exit code 1.
+struct SolverError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Writing an output failed at run time. The CLI maps it to exit code 1.
+struct IoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws InvalidInput("<function>: <what>") unless `condition` holds.
+void require(bool condition, const char* function, const std::string& what);
+
+}  // namespace geolens

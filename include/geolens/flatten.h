@@ -1,0 +1,123 @@
+#pragma once
+// Flattening the lifted mesh back to the plane with the local/global solver (paper section 5).
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geolens {
+
+class DirichletSolver;
+
+/// Per-edge weights of the global step.
+enum class FlattenWeights {
+  kPaper,  ///< (1 + h_m) A_m cot(theta): h_m the triangle's mean normalized height (level in
+           ///< [0, 1]), A_m its 3D area over the mean 3D area
+  kCotan,  ///< cot(theta): the plain ARAP energy
+};
+
+/// The target transformation each triangle is fitted to in the local step, from the signed
+/// SVD J = U diag(s1, s2) V^T of the triangle's current Jacobian (standard -> current).
+enum class Metric {
+  /// The paper's Eq. 6: U diag(alpha (s1 - 1) + 1, alpha (s2 - 1) + 1) V^T. Equal to
+  /// (1 - alpha) R + alpha J, so it is a damped ARAP step with the ARAP fixed point for every
+  /// alpha < 1: it differs from ARAP only when stopped early (DESIGN decision 1).
+  kPaper,
+  /// A spectrum that keeps its effect at convergence: b U V^T with
+  /// b = (1 - alpha) + alpha (s1 + s2) / 2; alpha = 0 is rigid (ARAP), alpha = 1 the closest
+  /// similarity (ASAP, angle-preserving), after Liu et al. 2008.
+  kSpectrum,
+};
+
+/// Which image-border conditions the flattened mesh obeys.
+enum class Boundary {
+  kSliding,  ///< border vertices slide along their own side, corners fixed
+  kFixed,    ///< border vertices pinned where they were
+  kFree,     ///< one vertex pinned (translation); the result is later scaled to fit
+};
+
+FlattenWeights parse_flatten_weights(const std::string& name);  ///< "paper" | "cotan"
+Metric parse_metric(const std::string& name);                   ///< "paper" | "spectrum"
+Boundary parse_boundary(const std::string& name);               ///< "sliding" | "fixed" | "free"
+std::string to_string(FlattenWeights weights);
+std::string to_string(Metric metric);
+std::string to_string(Boundary boundary);
+
+struct FlattenOptions {
+  FlattenWeights weights = FlattenWeights::kPaper;
+  Metric metric = Metric::kPaper;
+  double alpha = 0.0;  ///< metric blend: [0, 1) for kPaper (the paper uses [0, 0.5]), [0, 1]
+                       ///< for kSpectrum
+  Boundary boundary = Boundary::kSliding;
+  double tolerance = 1e-3;   ///< stop when |E_k - E_k-1| <= tolerance * E_k-1 (paper: 0.1%)
+  int max_iterations = 100;  ///< cap on global steps, >= 1
+};
+
+/// Throws InvalidInput unless the options are in range.
+void validate(const FlattenOptions& options);
+
+struct FlattenResult {
+  Eigen::MatrixX2d X;          ///< #V x 2 flattened positions, pixels (before framing)
+  std::vector<double> energy;  ///< energy of the initial guess, then after each global step
+  int iterations = 0;          ///< global steps taken
+  bool converged = false;      ///< the tolerance was met before the cap
+};
+
+/// The local/global flattener of one lifted mesh. Construction computes the standard triangles
+/// (each 3D triangle laid isometrically in the plane, paper Fig. 4), the weights, the global
+/// matrix L and its sparse Cholesky factorization; solve() then iterates.
+///
+/// Energy: E(X) = sum_t sum_{edges (i,j) of t} w_ij ||(x_i - x_j) - M_t (s_i - s_j)||^2
+///              = sum_t c_t 2 A_t ||J_t - M_t||_F^2,
+/// with s the standard triangle, J_t its Jacobian standard -> current, M_t the metric target,
+/// w_ij = c_t cot(theta_ij) (c_t = 1 for kCotan weights). L is the weighted graph Laplacian
+/// with the sign convention L_ii = sum_j w_ij > 0, L_ij = -w_ij (positive semidefinite,
+/// L * 1 = 0).
+class Flattener {
+ public:
+  /// @param V3     #V x 3 lifted vertices, pixels
+  /// @param F      #F x 3 triangles
+  /// @param level  #V normalized heights in [0, 1] (for the paper weights)
+  /// @param sides  #V Side flags of the grid (border vertices), see grid.h
+  Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F, const Eigen::VectorXd& level,
+            const std::vector<uint8_t>& sides, const FlattenOptions& options);
+  ~Flattener();
+
+  /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
+  /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
+  FlattenResult solve(const Eigen::MatrixX2d& X0) const;
+
+  /// E(X) with the metric targets fitted to X (the local step), see above.
+  double energy(const Eigen::MatrixX2d& X) const;
+
+  /// The global matrix L (#V x #V), before the boundary conditions.
+  const Eigen::SparseMatrix<double>& laplacian() const { return L_; }
+
+ private:
+  struct Triangle {
+    Eigen::Matrix2d S_inv;  // inverse of the standard edge matrix [s1 - s0, s2 - s0]
+    Eigen::Matrix2d S;      // the standard edge matrix
+    double area2c;          // 2 A_t c_t: the triangle's weight in ||J - M||_F^2
+    Eigen::Vector3d w;      // w for the edge opposite each corner
+  };
+  Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
+  Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;
+
+  Eigen::MatrixX3i F_;
+  Eigen::MatrixX2d rest_;  // the grid's 2D positions: the values of fixed coordinates
+  FlattenOptions options_;
+  std::vector<Triangle> triangles_;
+  Eigen::SparseMatrix<double> L_;
+  // One solver for both coordinates, or (sliding) one per coordinate.
+  std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
+};
+
+/// One-off: builds a Flattener and solves from the projection of V3.
+FlattenResult flatten(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
+                      const FlattenOptions& options);
+
+}  // namespace geolens

@@ -1,0 +1,70 @@
+#pragma once
+// The geometric lens: grid -> lift -> harmonic texture -> local/global flattening -> frame.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "geolens/flatten.h"
+#include "geolens/grid.h"
+#include "geolens/lift.h"
+#include "geolens/texture_map.h"
+#include "geolens/warp_mesh.h"
+
+namespace geolens {
+
+struct LensOptions {
+  int mesh = 100;  ///< grid vertices along the image's long side, in [4, 1000]
+  TextureWeights texture = TextureWeights::kCotan;
+  FlattenOptions flatten;
+  /// Bump heights are calibrated until every lens's measured zoom is within this relative
+  /// tolerance of its request, or `max_calibration_solves` full solves were made.
+  double zoom_tolerance = 0.02;
+  int max_calibration_solves = 12;
+};
+
+/// Throws InvalidInput unless the options are in range.
+void validate(const LensOptions& options);
+
+/// Wall-clock milliseconds per stage, summed over the calibration solves.
+struct StageTimings {
+  double lift = 0, texture = 0, factorize = 0, iterate = 0, total = 0;
+};
+
+struct LensResult {
+  WarpMesh warp;                      ///< source = texture coordinates, screen = framed flattening
+  Eigen::MatrixX3d lifted;            ///< #V x 3 the lifted mesh of the final solve, pixels
+  Eigen::MatrixX2d flat;              ///< #V x 2 the flattening before framing, pixels
+  FlattenResult flattening;           ///< iterations and energies of the final solve
+  std::vector<double> heights;        ///< per lens: calibrated centre height h0, pixels
+  std::vector<double> zoom_measured;  ///< per lens: magnification at its centre
+  int solves = 0;                     ///< full solves made by the calibration
+  StageTimings timings;
+};
+
+/// Magnifies lenses on a width x height image. Holds the grid; every call to solve() is
+/// independent (no state carries over between calls), so one object serves many lens
+/// placements on the same image.
+class GeometricLens {
+ public:
+  GeometricLens(double width, double height, const LensOptions& options = {});
+
+  /// Finds each lens's bump height so that its measured zoom matches its request (zoom 1 means
+  /// height 0, the identity), and returns the final warp. Throws InvalidInput for an invalid
+  /// lens, SolverError if a system cannot be solved.
+  LensResult solve(const std::vector<Lens>& lenses) const;
+
+  /// One solve with given centre heights (pixels), no calibration; fills `zoom_measured`.
+  LensResult solve_with_heights(const std::vector<Lens>& lenses,
+                                const std::vector<double>& heights) const;
+
+  const Grid& grid() const { return grid_; }
+  double width() const { return width_; }
+  double height() const { return height_; }
+
+ private:
+  double width_, height_;
+  LensOptions options_;
+  Grid grid_;
+};
+
+}  // namespace geolens

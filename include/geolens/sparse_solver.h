@@ -1,0 +1,54 @@
+#pragma once
+// Sparse linear systems with Dirichlet (fixed-value) conditions, factorized once and solved many
+// times.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <memory>
+#include <vector>
+
+namespace geolens {
+
+/// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
+/// A_ff x_f = b_f - A_fc x_c. A is n x n; symmetric positive (semi)definite systems use a
+/// sparse Cholesky factorization (Eigen's SimplicialLLT), others a sparse LU. The symbolic
+/// analysis is kept, so refactorize() with new values on the same pattern is cheaper.
+class DirichletSolver {
+ public:
+  /// @param A       n x n system matrix
+  /// @param fixed   n flags, non-zero where the value is given (at least one for a
+  ///                semi-definite A, else the reduced system is singular)
+  /// @param symmetric  true if A is symmetric positive semidefinite (Cholesky), false for LU
+  /// Throws SolverError if the reduced matrix cannot be factorized.
+  DirichletSolver(const Eigen::SparseMatrix<double>& A, const std::vector<char>& fixed,
+                  bool symmetric);
+  ~DirichletSolver();
+  DirichletSolver(DirichletSolver&&) noexcept;
+  DirichletSolver& operator=(DirichletSolver&&) noexcept;
+
+  /// New values for A on the same sparsity pattern and the same fixed set.
+  void refactorize(const Eigen::SparseMatrix<double>& A);
+
+  /// @param b        n x k right-hand sides (rows of fixed entries ignored)
+  /// @param x_fixed  n x k values; only the rows of fixed entries are read
+  /// @return n x k solution, fixed rows copied from x_fixed
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& b, const Eigen::MatrixXd& x_fixed) const;
+
+  int free_count() const { return int(free_.size()); }
+
+ private:
+  void split(const Eigen::SparseMatrix<double>& A);
+  void factorize();
+
+  bool symmetric_;
+  std::vector<int> free_;             // reduced index -> full index
+  std::vector<int> reduced_;          // full index -> reduced index, or -1 if fixed
+  Eigen::SparseMatrix<double> A_ff_;  // free x free block
+  Eigen::SparseMatrix<double> A_fc_;  // free x all, fixed columns only
+  std::unique_ptr<Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>> llt_;
+  std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
+};
+
+}  // namespace geolens

@@ -1,0 +1,37 @@
+#pragma once
+// Texture coordinates on the lifted mesh: a harmonic map onto the source image (paper 4.1).
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+namespace geolens {
+
+/// Edge weights of the discrete harmonic map, both computed on the 3D mesh.
+enum class TextureWeights {
+  kMeanValue,  ///< Floater 2003 mean value weights, the paper's choice; not symmetric
+  kCotan,      ///< cotangent weights (Pinkall-Polthier), symmetric
+};
+
+TextureWeights parse_texture_weights(const std::string& name);  ///< "mvc" | "cotan"
+std::string to_string(TextureWeights weights);
+
+/// Weight matrix W (#V x #V, row i holds w_ij for the neighbours j of vertex i, zero diagonal)
+/// of the harmonic equation sum_j w_ij (u_i - u_j) = 0, computed on the 3D mesh.
+/// @param V3  #V x 3 lifted vertices, pixels
+/// @param F   #F x 3 triangles
+Eigen::SparseMatrix<double> harmonic_weights(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                             TextureWeights weights);
+
+/// Solves the harmonic map as one sparse linear system (the fixed point of the paper's
+/// Jacobi-style iteration): vertices with `fixed[i] != 0` keep `uv.row(i)`, the others satisfy
+/// sum_j w_ij (u_i - u_j) = 0. The paper fixes the image border and every vertex outside all
+/// regions of interest.
+/// @param uv  #V x 2 initial / boundary texture coordinates (source pixels)
+/// @return    #V x 2 texture coordinates, source pixels
+Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                  const std::vector<char>& fixed, const Eigen::MatrixX2d& uv,
+                                  TextureWeights weights);
+
+}  // namespace geolens

@@ -1,0 +1,89 @@
+#include "geolens/distortion.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geolens/errors.h"
+#include "geolens/svd2.h"
+
+namespace geolens {
+
+namespace {
+Eigen::Matrix2d edges(const Eigen::MatrixX2d& P, const Eigen::MatrixX3i& F, Eigen::Index f) {
+  Eigen::Matrix2d E;
+  E.col(0) = (P.row(F(f, 1)) - P.row(F(f, 0))).transpose();
+  E.col(1) = (P.row(F(f, 2)) - P.row(F(f, 0))).transpose();
+  return E;
+}
+}  // namespace
+
+TriangleDistortion measure_triangles(const WarpMesh& mesh) {
+  require(mesh.source.rows() == mesh.screen.rows(), "measure_triangles",
+          "source and screen must have the same number of vertices");
+  const Eigen::Index m = mesh.F.rows();
+  TriangleDistortion d;
+  d.magnification.resize(m);
+  d.conformal.resize(m);
+  d.source_area.resize(m);
+  d.flipped.resize(m);
+  for (Eigen::Index f = 0; f < m; ++f) {
+    const Eigen::Matrix2d S = edges(mesh.source, mesh.F, f);
+    const double det_s = S.determinant();
+    d.source_area(f) = 0.5 * std::abs(det_s);
+    if (std::abs(det_s) <= 1e-12) {
+      d.magnification(f) = 0;
+      d.conformal(f) = std::numeric_limits<double>::infinity();
+      d.flipped(f) = true;
+      continue;
+    }
+    const Eigen::Matrix2d J = edges(mesh.screen, mesh.F, f) * S.inverse();
+    const SignedSvd2 svd = signed_svd(J);
+    const double s1 = svd.s1, s2 = std::abs(svd.s2);
+    d.magnification(f) = std::sqrt(s1 * s2);
+    d.conformal(f) = s2 > 0 ? s1 / s2 - 1 : std::numeric_limits<double>::infinity();
+    d.flipped(f) = J.determinant() <= 0;
+  }
+  return d;
+}
+
+double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures,
+                        const Eigen::Vector2d& point, double radius) {
+  double sum = 0, weight = 0;
+  Eigen::Index containing = -1;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector2d a = mesh.source.row(mesh.F(f, 0)), b = mesh.source.row(mesh.F(f, 1)),
+                          c = mesh.source.row(mesh.F(f, 2));
+    if (((a + b + c) / 3.0 - point).norm() <= radius) {
+      sum += measures.magnification(f) * measures.source_area(f);
+      weight += measures.source_area(f);
+    }
+    auto side = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+      const Eigen::Vector2d e = q - p, r = point - p;
+      return e.x() * r.y() - e.y() * r.x();
+    };
+    const double s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
+    if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) containing = f;
+  }
+  if (weight > 0) return sum / weight;
+  require(containing >= 0, "magnification_at", "the point is outside the mesh");
+  return measures.magnification(containing);
+}
+
+DistortionSummary summarize(const TriangleDistortion& measures) {
+  DistortionSummary s;
+  double weight = 0;
+  for (Eigen::Index f = 0; f < measures.conformal.size(); ++f) {
+    if (measures.flipped(f)) ++s.flipped;
+    if (!std::isfinite(measures.conformal(f))) continue;
+    s.conformal_mean += measures.conformal(f) * measures.source_area(f);
+    weight += measures.source_area(f);
+    s.conformal_max = std::max(s.conformal_max, measures.conformal(f));
+  }
+  if (weight > 0) s.conformal_mean /= weight;
+  return s;
+}
+
+}  // namespace geolens

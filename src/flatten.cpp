@@ -1,0 +1,231 @@
+#include "geolens/flatten.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "geolens/errors.h"
+#include "geolens/grid.h"
+#include "geolens/sparse_solver.h"
+#include "geolens/svd2.h"
+
+namespace geolens {
+
+FlattenWeights parse_flatten_weights(const std::string& name) {
+  if (name == "paper") return FlattenWeights::kPaper;
+  if (name == "cotan") return FlattenWeights::kCotan;
+  throw InvalidInput("parse_flatten_weights: unknown weights '" + name +
+                     "' (expected paper or cotan)");
+}
+
+Metric parse_metric(const std::string& name) {
+  if (name == "paper") return Metric::kPaper;
+  if (name == "spectrum") return Metric::kSpectrum;
+  throw InvalidInput("parse_metric: unknown metric '" + name + "' (expected paper or spectrum)");
+}
+
+Boundary parse_boundary(const std::string& name) {
+  if (name == "sliding") return Boundary::kSliding;
+  if (name == "fixed") return Boundary::kFixed;
+  if (name == "free") return Boundary::kFree;
+  throw InvalidInput("parse_boundary: unknown boundary '" + name +
+                     "' (expected sliding, fixed or free)");
+}
+
+std::string to_string(FlattenWeights weights) {
+  return weights == FlattenWeights::kPaper ? "paper" : "cotan";
+}
+std::string to_string(Metric metric) { return metric == Metric::kPaper ? "paper" : "spectrum"; }
+std::string to_string(Boundary boundary) {
+  switch (boundary) {
+    case Boundary::kSliding:
+      return "sliding";
+    case Boundary::kFixed:
+      return "fixed";
+    case Boundary::kFree:
+      return "free";
+  }
+  return "?";
+}
+
+void validate(const FlattenOptions& o) {
+  const double alpha_max = o.metric == Metric::kPaper ? 1.0 : 1.0 + 1e-12;
+  require(std::isfinite(o.alpha) && o.alpha >= 0 && o.alpha < alpha_max, "validate",
+          "alpha must be in " + std::string(o.metric == Metric::kPaper ? "[0, 1)" : "[0, 1]") +
+              " for metric " + to_string(o.metric) + ", got " + std::to_string(o.alpha));
+  require(std::isfinite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "validate",
+          "tolerance must be in (0, 1), got " + std::to_string(o.tolerance));
+  require(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate",
+          "max iterations must be in [1, 100000], got " + std::to_string(o.max_iterations));
+}
+
+Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                     const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
+                     const FlattenOptions& options)
+    : F_(F), rest_(V3.leftCols<2>()), options_(options) {
+  validate(options);
+  const Eigen::Index n = V3.rows();
+  require(level.size() == n && sides.size() == size_t(n), "Flattener",
+          "level and sides must have one entry per vertex");
+  require(F.rows() > 0 && F.minCoeff() >= 0 && F.maxCoeff() < n, "Flattener",
+          "faces must index the " + std::to_string(n) + " vertices");
+
+  // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
+  triangles_.resize(size_t(F.rows()));
+  double mean_area = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d e1 = V3.row(F(f, 1)) - V3.row(F(f, 0));
+    const Eigen::Vector3d e2 = V3.row(F(f, 2)) - V3.row(F(f, 0));
+    const double l1 = e1.norm(), cross = e1.cross(e2).norm();
+    require(l1 > 0 && cross > 0, "Flattener",
+            "triangle " + std::to_string(f) + " is degenerate in 3D");
+    Triangle& t = triangles_[size_t(f)];
+    t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
+    t.S_inv = t.S.inverse();
+    t.area2c = cross;  // 2 A, times c_t below
+    mean_area += 0.5 * cross;
+  }
+  mean_area /= double(F.rows());
+
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(size_t(F.rows()) * 12);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    Triangle& t = triangles_[size_t(f)];
+    double c = 1.0;
+    if (options.weights == FlattenWeights::kPaper) {
+      const double h = (level(F(f, 0)) + level(F(f, 1)) + level(F(f, 2))) / 3.0;
+      c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
+    }
+    t.area2c *= c;
+    const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = s[(k + 1) % 3] - s[k], b = s[(k + 2) % 3] - s[k];
+      const double cot = a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
+      t.w(k) = c * cot;
+      const int i = F(f, (k + 1) % 3), j = F(f, (k + 2) % 3);
+      entries.emplace_back(i, i, t.w(k));
+      entries.emplace_back(j, j, t.w(k));
+      entries.emplace_back(i, j, -t.w(k));
+      entries.emplace_back(j, i, -t.w(k));
+    }
+  }
+  L_.resize(n, n);
+  L_.setFromTriplets(entries.begin(), entries.end());
+
+  std::vector<char> fix_x(size_t(n), 0), fix_y(size_t(n), 0);
+  for (size_t i = 0; i < size_t(n); ++i) {
+    switch (options.boundary) {
+      case Boundary::kSliding:
+        fix_x[i] = (sides[i] & (kLeft | kRight)) != 0;
+        fix_y[i] = (sides[i] & (kTop | kBottom)) != 0;
+        break;
+      case Boundary::kFixed:
+        fix_x[i] = fix_y[i] = sides[i] != 0;
+        break;
+      case Boundary::kFree:
+        break;
+    }
+  }
+  if (options.boundary == Boundary::kFree) fix_x[0] = fix_y[0] = 1;
+  require(std::find(fix_x.begin(), fix_x.end(), 1) != fix_x.end() &&
+              std::find(fix_y.begin(), fix_y.end(), 1) != fix_y.end(),
+          "Flattener", "the boundary mode fixes no vertex: are the grid sides set?");
+  solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true);
+  if (fix_x != fix_y) solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y, true);
+}
+
+Flattener::~Flattener() = default;
+
+Eigen::Matrix2d Flattener::jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const {
+  Eigen::Matrix2d E;
+  E.col(0) = (X.row(F_(f, 1)) - X.row(F_(f, 0))).transpose();
+  E.col(1) = (X.row(F_(f, 2)) - X.row(F_(f, 0))).transpose();
+  return E * t.S_inv;
+}
+
+Eigen::Matrix2d Flattener::target(const Eigen::Matrix2d& J) const {
+  const SignedSvd2 svd = signed_svd(J);
+  const double a = options_.alpha;
+  if (options_.metric == Metric::kPaper) {
+    return compose(svd, a * (svd.s1 - 1) + 1, a * (svd.s2 - 1) + 1);
+  }
+  const double b = (1 - a) + a * 0.5 * (svd.s1 + svd.s2);
+  return b * rotation(svd.rotation_angle());
+}
+
+double Flattener::energy(const Eigen::MatrixX2d& X) const {
+  double e = 0;
+  for (size_t f = 0; f < triangles_.size(); ++f) {
+    const Triangle& t = triangles_[f];
+    const Eigen::Matrix2d J = jacobian(t, int(f), X);
+    e += t.area2c * (J - target(J)).squaredNorm();
+  }
+  return e;
+}
+
+FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
+  require(X0.rows() == rest_.rows(), "Flattener::solve",
+          "initial guess has " + std::to_string(X0.rows()) + " rows, expected " +
+              std::to_string(rest_.rows()));
+  FlattenResult r;
+  r.X = X0;
+  const Eigen::Index n = rest_.rows();
+  std::vector<Eigen::Matrix2d> M(triangles_.size());
+  auto local_step = [&]() {
+    double e = 0;
+    for (size_t f = 0; f < triangles_.size(); ++f) {
+      const Triangle& t = triangles_[f];
+      const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
+      M[f] = target(J);
+      e += t.area2c * (J - M[f]).squaredNorm();
+    }
+    return e;
+  };
+  // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps X0's.
+  const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? X0 : rest_;
+  // An energy this small relative to the total weight is the exact solution up to rounding.
+  double total_weight = 0;
+  for (const Triangle& t : triangles_) total_weight += t.area2c;
+  const double negligible = 1e-20 * total_weight;
+  r.energy.push_back(local_step());
+  while (r.iterations < options_.max_iterations) {
+    if (r.energy.back() <= negligible) {
+      r.converged = true;
+      break;
+    }
+    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 2);
+    for (size_t f = 0; f < triangles_.size(); ++f) {
+      const Triangle& t = triangles_[f];
+      const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+      for (int k = 0; k < 3; ++k) {
+        const int a = (k + 1) % 3, c = (k + 2) % 3;
+        const Eigen::Vector2d d = t.w(k) * (M[f] * (s[a] - s[c]));
+        b.row(F_(Eigen::Index(f), a)) += d.transpose();
+        b.row(F_(Eigen::Index(f), c)) -= d.transpose();
+      }
+    }
+    if (solver_y_) {
+      r.X.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0));
+      r.X.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1));
+    } else {
+      r.X = solver_x_->solve(b, fixed_values);
+    }
+    ++r.iterations;
+    const double previous = r.energy.back();
+    r.energy.push_back(local_step());
+    if (std::abs(previous - r.energy.back()) <= options_.tolerance * previous) {
+      r.converged = true;
+      break;
+    }
+  }
+  return r;
+}
+
+FlattenResult flatten(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
+                      const FlattenOptions& options) {
+  return Flattener(V3, F, level, sides, options).solve(V3.leftCols<2>());
+}
+
+}  // namespace geolens

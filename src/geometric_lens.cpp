@@ -1,0 +1,146 @@
+#include "geolens/geometric_lens.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "geolens/distortion.h"
+#include "geolens/errors.h"
+
+namespace geolens {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// First guess of the centre height for a zoom: h0 / r per unit of log(zoom), measured with the
+// default options (cotan texture, paper weights) on a 100x100 grid at zoom 1.5 to 3.
+double initial_height(const Lens& lens) {
+  const double per_log_zoom[] = {1.08, 2.3, 1.95};  // gaussian, sphere, mesa
+  return lens.roi.radius * per_log_zoom[int(lens.profile)] * std::log(lens.zoom);
+}
+
+// Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
+// flattening is scaled uniformly to fit and centred.
+Eigen::MatrixX2d frame(const Eigen::MatrixX2d& X, Boundary boundary, double width, double height) {
+  if (boundary != Boundary::kFree) return X;
+  const Eigen::Vector2d lo = X.colwise().minCoeff(), hi = X.colwise().maxCoeff();
+  const Eigen::Vector2d extent = hi - lo;
+  const double scale = std::min(width / extent.x(), height / extent.y());
+  const Eigen::RowVector2d offset(0.5 * (width - scale * extent.x()),
+                                  0.5 * (height - scale * extent.y()));
+  return ((X.rowwise() - lo.transpose()) * scale).rowwise() + offset;
+}
+
+}  // namespace
+
+void validate(const LensOptions& o) {
+  require(o.mesh >= 4 && o.mesh <= 1000, "validate",
+          "mesh must be in [4, 1000] vertices per side, got " + std::to_string(o.mesh));
+  require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
+          "zoom tolerance must be positive");
+  require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");
+  validate(o.flatten);
+}
+
+GeometricLens::GeometricLens(double width, double height, const LensOptions& options)
+    : width_(width), height_(height), options_(options) {
+  validate(options);
+  grid_ = make_grid(width, height, options.mesh);
+}
+
+LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
+                                             const std::vector<double>& heights) const {
+  const auto start = Clock::now();
+  LensResult r;
+  r.heights = heights;
+  const Lifted lifted = lift(grid_.V, lenses, heights);
+  r.timings.lift = ms_since(start);
+
+  auto t = Clock::now();
+  std::vector<char> fixed(lifted.inside.size());
+  for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || grid_.sides[i] != 0;
+  r.warp.source = harmonic_texture(lifted.V, grid_.F, fixed, grid_.V, options_.texture);
+  r.timings.texture = ms_since(t);
+
+  t = Clock::now();
+  const Flattener flattener(lifted.V, grid_.F, lifted.level, grid_.sides, options_.flatten);
+  r.timings.factorize = ms_since(t);
+
+  t = Clock::now();
+  r.flattening = flattener.solve(grid_.V);
+  r.timings.iterate = ms_since(t);
+
+  r.lifted = lifted.V;
+  r.flat = r.flattening.X;
+  r.warp.F = grid_.F;
+  r.warp.screen = frame(r.flat, options_.flatten.boundary, width_, height_);
+  r.warp.screen_width = int(std::lround(width_));
+  r.warp.screen_height = int(std::lround(height_));
+
+  const TriangleDistortion measures = measure_triangles(r.warp);
+  for (const Lens& lens : lenses) {
+    const double radius = std::max(grid_.cell, 0.05 * lens.roi.radius);
+    r.zoom_measured.push_back(magnification_at(r.warp, measures, lens.roi.center, radius));
+  }
+  r.solves = 1;
+  r.timings.total = ms_since(start);
+  return r;
+}
+
+LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
+  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
+  const size_t n = lenses.size();
+  // Per lens, a bracket [lo, hi] of heights on f(h) = log(zoom(h)) - log(target), f(0) < 0,
+  // refined by false position (Illinois variant: an end kept twice has its f halved).
+  std::vector<double> h(n), lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
+  std::vector<int> last_side(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    f_lo[k] = -std::log(lenses[k].zoom);
+    h[k] = lenses[k].zoom == 1 ? 0.0 : initial_height(lenses[k]);
+  }
+  StageTimings sum;
+  LensResult r;
+  for (int solve = 1;; ++solve) {
+    r = solve_with_heights(lenses, h);
+    sum.lift += r.timings.lift;
+    sum.texture += r.timings.texture;
+    sum.factorize += r.timings.factorize;
+    sum.iterate += r.timings.iterate;
+    sum.total += r.timings.total;
+    r.solves = solve;
+    bool done = true;
+    for (size_t k = 0; k < n; ++k) {
+      if (h[k] == 0) continue;
+      const double gain = std::log(r.zoom_measured[k]);
+      const double f = gain - std::log(lenses[k].zoom);
+      if (std::abs(f) <= std::log1p(options_.zoom_tolerance)) continue;
+      done = false;
+      const int side = f < 0 ? -1 : 1;
+      if (side < 0) {
+        lo[k] = h[k];
+        f_lo[k] = f;
+        if (last_side[k] < 0) f_hi[k] *= 0.5;
+      } else {
+        hi[k] = h[k];
+        f_hi[k] = f;
+        if (last_side[k] > 0) f_lo[k] *= 0.5;
+      }
+      last_side[k] = side;
+      if (hi[k] < 0) {
+        // No upper end yet: extrapolate log(zoom) linearly through h = 0, at most doubling.
+        h[k] = gain > 0 ? std::min(2.0 * h[k], h[k] * std::log(lenses[k].zoom) / gain) : 2.0 * h[k];
+      } else {
+        h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
+      }
+    }
+    if (done || solve >= options_.max_calibration_solves) break;
+  }
+  r.timings = sum;
+  return r;
+}
+
+}  // namespace geolens

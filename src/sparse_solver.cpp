@@ -1,0 +1,100 @@
+#include "geolens/sparse_solver.h"
+
+#include <string>
+
+#include "geolens/errors.h"
+
+namespace geolens {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed, bool symmetric)
+    : symmetric_(symmetric) {
+  require(A.rows() == A.cols() && size_t(A.rows()) == fixed.size(), "DirichletSolver",
+          "matrix is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) + " but " +
+              std::to_string(fixed.size()) + " fixed flags were given");
+  reduced_.assign(fixed.size(), -1);
+  for (size_t i = 0; i < fixed.size(); ++i) {
+    if (!fixed[i]) {
+      reduced_[i] = int(free_.size());
+      free_.push_back(int(i));
+    }
+  }
+  split(A);
+  if (symmetric_) {
+    llt_ = std::make_unique<Eigen::SimplicialLLT<SpMat>>();
+    llt_->analyzePattern(A_ff_);
+  } else {
+    lu_ = std::make_unique<Eigen::SparseLU<SpMat>>();
+    lu_->analyzePattern(A_ff_);
+  }
+  factorize();
+}
+
+DirichletSolver::~DirichletSolver() = default;
+DirichletSolver::DirichletSolver(DirichletSolver&&) noexcept = default;
+DirichletSolver& DirichletSolver::operator=(DirichletSolver&&) noexcept = default;
+
+void DirichletSolver::split(const SpMat& A) {
+  const int nf = int(free_.size());
+  std::vector<Eigen::Triplet<double>> ff, fc;
+  ff.reserve(size_t(A.nonZeros()));
+  for (int col = 0; col < A.outerSize(); ++col) {
+    for (SpMat::InnerIterator it(A, col); it; ++it) {
+      const int r = reduced_[size_t(it.row())];
+      if (r < 0) continue;
+      const int c = reduced_[size_t(it.col())];
+      if (c >= 0) {
+        ff.emplace_back(r, c, it.value());
+      } else {
+        fc.emplace_back(r, int(it.col()), it.value());
+      }
+    }
+  }
+  A_ff_.resize(nf, nf);
+  A_ff_.setFromTriplets(ff.begin(), ff.end());
+  A_fc_.resize(nf, A.cols());
+  A_fc_.setFromTriplets(fc.begin(), fc.end());
+}
+
+void DirichletSolver::factorize() {
+  if (free_.empty()) return;
+  if (symmetric_) {
+    llt_->factorize(A_ff_);
+    if (llt_->info() != Eigen::Success)
+      throw SolverError("DirichletSolver: Cholesky factorization failed on a " +
+                        std::to_string(free_.size()) + "-unknown system (not positive definite)");
+  } else {
+    lu_->factorize(A_ff_);
+    if (lu_->info() != Eigen::Success)
+      throw SolverError("DirichletSolver: LU factorization failed on a " +
+                        std::to_string(free_.size()) + "-unknown system (singular)");
+  }
+}
+
+void DirichletSolver::refactorize(const SpMat& A) {
+  require(size_t(A.rows()) == reduced_.size() && A.cols() == A.rows(),
+          "DirichletSolver::refactorize", "matrix size changed");
+  split(A);
+  factorize();
+}
+
+Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,
+                                       const Eigen::MatrixXd& x_fixed) const {
+  const Eigen::Index n = Eigen::Index(reduced_.size());
+  require(b.rows() == n && x_fixed.rows() == n && b.cols() == x_fixed.cols(),
+          "DirichletSolver::solve",
+          "right-hand side and fixed values must have " + std::to_string(n) +
+              " rows and equal columns");
+  Eigen::MatrixXd x = x_fixed;
+  if (free_.empty()) return x;
+  Eigen::MatrixXd rhs(free_.size(), b.cols());
+  for (size_t r = 0; r < free_.size(); ++r) rhs.row(Eigen::Index(r)) = b.row(free_[r]);
+  rhs.noalias() -= A_fc_ * x_fixed;  // free rows of A_fc_ only touch fixed columns
+  const Eigen::MatrixXd xf =
+      symmetric_ ? Eigen::MatrixXd(llt_->solve(rhs)) : Eigen::MatrixXd(lu_->solve(rhs));
+  for (size_t r = 0; r < free_.size(); ++r) x.row(free_[r]) = xf.row(Eigen::Index(r));
+  return x;
+}
+
+}  // namespace geolens

@@ -1,0 +1,70 @@
+#include "geolens/texture_map.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "geolens/errors.h"
+#include "geolens/sparse_solver.h"
+
+namespace geolens {
+
+TextureWeights parse_texture_weights(const std::string& name) {
+  if (name == "mvc") return TextureWeights::kMeanValue;
+  if (name == "cotan") return TextureWeights::kCotan;
+  throw InvalidInput("parse_texture_weights: unknown texture weights '" + name +
+                     "' (expected mvc or cotan)");
+}
+
+std::string to_string(TextureWeights weights) {
+  return weights == TextureWeights::kMeanValue ? "mvc" : "cotan";
+}
+
+Eigen::SparseMatrix<double> harmonic_weights(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                             TextureWeights weights) {
+  std::vector<Eigen::Triplet<double>> w;
+  w.reserve(size_t(F.rows()) * 6);
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      // Corner i with the other two vertices j, l of the triangle.
+      const int i = F(t, k), j = F(t, (k + 1) % 3), l = F(t, (k + 2) % 3);
+      const Eigen::Vector3d a = V3.row(j) - V3.row(i), b = V3.row(l) - V3.row(i);
+      const double la = a.norm(), lb = b.norm();
+      const double cos_angle = a.dot(b), sin_angle = a.cross(b).norm();
+      if (weights == TextureWeights::kCotan) {
+        // cot of the angle at i weighs the opposite edge (j, l), half per triangle.
+        const double c = 0.5 * cos_angle / sin_angle;
+        w.emplace_back(j, l, c);
+        w.emplace_back(l, j, c);
+      } else {
+        // tan(angle / 2) = sin / (1 + cos) with unit vectors; weighs edges (i, j) and (i, l).
+        const double tan_half = sin_angle / (la * lb + cos_angle);
+        w.emplace_back(i, j, tan_half / la);
+        w.emplace_back(i, l, tan_half / lb);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> W(V3.rows(), V3.rows());
+  W.setFromTriplets(w.begin(), w.end());
+  return W;
+}
+
+Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                  const std::vector<char>& fixed, const Eigen::MatrixX2d& uv,
+                                  TextureWeights weights) {
+  require(uv.rows() == V3.rows() && fixed.size() == size_t(V3.rows()), "harmonic_texture",
+          "uv and fixed flags must have one row per vertex");
+  const Eigen::SparseMatrix<double> W = harmonic_weights(V3, F, weights);
+  // A = D - W with D the row sums: A u = 0 on free rows is sum_j w_ij (u_i - u_j) = 0.
+  const Eigen::VectorXd degree = W * Eigen::VectorXd::Ones(W.cols());
+  Eigen::SparseMatrix<double> D(W.rows(), W.cols());
+  std::vector<Eigen::Triplet<double>> diagonal;
+  for (Eigen::Index i = 0; i < W.rows(); ++i) diagonal.emplace_back(i, i, degree(i));
+  D.setFromTriplets(diagonal.begin(), diagonal.end());
+  const Eigen::SparseMatrix<double> A = D - W;
+  const DirichletSolver solver(A, fixed, weights == TextureWeights::kCotan);
+  return solver.solve(Eigen::MatrixXd::Zero(uv.rows(), 2), uv);
+}
+
+}  // namespace geolens

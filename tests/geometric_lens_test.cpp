@@ -1,0 +1,92 @@
+#include "geolens/geometric_lens.h"
+
+#include <gtest/gtest.h>
+
+#include <tuple>
+
+#include "geolens/distortion.h"
+#include "geolens/errors.h"
+
+namespace geolens {
+namespace {
+
+Lens circle(double x, double y, double radius, double zoom, Profile profile) {
+  Lens lens;
+  lens.roi.center = {x, y};
+  lens.roi.radius = radius;
+  lens.zoom = zoom;
+  lens.profile = profile;
+  return lens;
+}
+
+// The acceptance case: 1024 x 1024, r = 150 at the centre, default options.
+class ZoomTest : public ::testing::TestWithParam<std::tuple<Profile, double>> {};
+
+TEST_P(ZoomTest, MeasuredZoomIsWithinTenPercentWithoutFlips) {
+  const auto [profile, zoom] = GetParam();
+  const GeometricLens lens(1024, 1024);
+  const LensResult r = lens.solve({circle(512, 512, 150, zoom, profile)});
+  EXPECT_NEAR(r.zoom_measured[0] / zoom, 1.0, 0.10);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  EXPECT_TRUE(r.flattening.converged);
+  EXPECT_LE(r.flattening.iterations, 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(ProfilesAndZooms, ZoomTest,
+                         ::testing::Combine(::testing::Values(Profile::kGaussian, Profile::kSphere,
+                                                              Profile::kMesa),
+                                            ::testing::Values(1.5, 2.0, 3.0)));
+
+TEST(GeometricLens, ZoomOneIsTheIdentity) {
+  const GeometricLens lens(300, 200, {});
+  const LensResult r = lens.solve({circle(150, 100, 60, 1.0, Profile::kGaussian)});
+  EXPECT_EQ(r.heights[0], 0.0);
+  EXPECT_LT((r.warp.source - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((r.warp.screen - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(r.zoom_measured[0], 1.0, 1e-9);
+}
+
+// Mirror-symmetric grid: an even number of cells per side (mesh 41 -> 40 cells).
+TEST(GeometricLens, CentredLensOnASquareImageGivesASymmetricWarp) {
+  LensOptions options;
+  options.mesh = 41;
+  const GeometricLens lens(400, 400, options);
+  const LensResult r = lens.solve({circle(200, 200, 80, 2.0, Profile::kGaussian)});
+  const Grid& g = lens.grid();
+  double asymmetry = 0, moved = 0;
+  for (int row = 0; row < g.rows; ++row) {
+    for (int col = 0; col < g.columns; ++col) {
+      const int i = row * g.columns + col;
+      const int mirror_x = row * g.columns + (g.columns - 1 - col);
+      const int mirror_y = (g.rows - 1 - row) * g.columns + col;
+      const int transpose = col * g.columns + row;
+      const Eigen::Vector2d p = r.warp.screen.row(i);
+      const Eigen::Vector2d px = r.warp.screen.row(mirror_x), py = r.warp.screen.row(mirror_y),
+                            pt = r.warp.screen.row(transpose);
+      asymmetry = std::max({asymmetry, (Eigen::Vector2d(400 - px.x(), px.y()) - p).norm(),
+                            (Eigen::Vector2d(py.x(), 400 - py.y()) - p).norm(),
+                            (Eigen::Vector2d(pt.y(), pt.x()) - p).norm()});
+      moved = std::max(moved, (p - g.V.row(i).transpose()).norm());
+    }
+  }
+  EXPECT_GT(moved, 5.0);
+  EXPECT_LT(asymmetry, 1e-6 * 400);
+}
+
+TEST(GeometricLens, RejectsInvalidLenses) {
+  const GeometricLens lens(100, 100, {});
+  EXPECT_THROW(lens.solve({circle(50, 50, 0, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, -3, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(150, 50, 10, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, 10, 9, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, 10, 0.5, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, std::nan(""), 2, Profile::kGaussian)}), InvalidInput);
+  LensOptions options;
+  options.mesh = 3;
+  EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
+  options.mesh = 1001;
+  EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
+}
+
+}  // namespace
+}  // namespace geolens
