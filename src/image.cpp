@@ -41,16 +41,6 @@ Format format_of(const std::string& path) {
   return Format::kUnknown;
 }
 
-/// `image` without its alpha channel (2 -> 1, 4 -> 3 channels); JPEG cannot store alpha.
-Image drop_alpha(const Image& image) {
-  const int channels = image.channels - 1;
-  Image out(image.width, image.height, channels);
-  const size_t count = size_t(image.width) * size_t(image.height);
-  for (size_t i = 0; i < count; ++i)
-    std::memcpy(&out.pixels[i * channels], &image.pixels[i * image.channels], size_t(channels));
-  return out;
-}
-
 /// Encodes `image` in memory, so that writing the file can be checked byte for byte.
 std::vector<uint8_t> encode(const Image& image, Format format, int jpeg_quality) {
   std::vector<uint8_t> bytes;
@@ -63,11 +53,8 @@ std::vector<uint8_t> encode(const Image& image, Format format, int jpeg_quality)
   if (format == Format::kPng) {
     ok = stbi_write_png_to_func(append, &bytes, image.width, image.height, image.channels,
                                 image.pixels.data(), image.width * image.channels);
-  } else if (image.channels == 2 || image.channels == 4) {
-    const Image opaque = drop_alpha(image);
-    ok = stbi_write_jpg_to_func(append, &bytes, opaque.width, opaque.height, opaque.channels,
-                                opaque.pixels.data(), jpeg_quality);
   } else {
+    // JPEG has no alpha: the encoder reads grey or RGB and skips the alpha byte.
     ok = stbi_write_jpg_to_func(append, &bytes, image.width, image.height, image.channels,
                                 image.pixels.data(), jpeg_quality);
   }

@@ -129,6 +129,7 @@ constexpr double kGuard = 1 << 21;       ///< output pixels
 constexpr int kMaxOutputSide = 1 << 20;  ///< output pixels, keeps the viewport inside the guard
 constexpr double kMaxCoordinate = 1e12;  ///< output pixels, keeps clipping arithmetic finite
 constexpr double kMinArea = 1e-10;       ///< twice the area, squared output pixels
+
 /// Affine map from an output pixel index (px, py) to texel coordinates (u, v) of one mip level.
 struct TexelMap {
   double u_x, u_y, u_0;
@@ -230,7 +231,8 @@ template <int C>
   if (!(u <= u_max)) u = u_max;
   if (!(v >= -1.0)) v = -1.0;
   if (!(v <= v_max)) v = v_max;
-  const int64_t u_fixed = int64_t((u + 1) * 256), v_fixed = int64_t((v + 1) * 256);  // >= 0
+  // Rounded to the nearest 1/256 texel; u + 1 >= 0, so the truncation rounds.
+  const int64_t u_fixed = int64_t((u + 1) * 256 + 0.5), v_fixed = int64_t((v + 1) * 256 + 0.5);
   const int x = int(u_fixed >> 8) - 1, y = int(v_fixed >> 8) - 1;
   const int32_t fx = int32_t(u_fixed & 255), fy = int32_t(v_fixed & 255);
   const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.width - 1);
@@ -406,7 +408,7 @@ Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, int
   // Largest singular value of J, in closed form.
   const double sigma = 0.5 * (std::hypot(J[0][0] + J[1][1], J[1][0] - J[0][1]) +
                               std::hypot(J[0][0] - J[1][1], J[1][0] + J[0][1]));
-  const double lod = std::clamp(std::log2(sigma), 0.0, double(levels - 1));  // NaN -> 0
+  const double lod = sigma > 1 ? std::min(std::log2(sigma), double(levels - 1)) : 0.0;  // NaN: 0
   t.level = int(lod);
   t.blend = int(std::lround((lod - t.level) * 256));  // the blend has 8 bits, like the weights
   if (t.blend == 256) {

@@ -30,7 +30,8 @@ Image load_image(const std::string& path);
 /// Writes `image` as PNG or JPEG, chosen by the extension (.png, .jpg, .jpeg; case-insensitive).
 /// Writes to a temporary file in the same folder and renames it into place, so `path` is never
 /// left partial. Throws InvalidInput for an unknown extension or a missing folder, IoError when
-/// writing fails. `jpeg_quality` in [1, 100].
+/// writing fails. `jpeg_quality` in [1, 100]. JPEG has no alpha: it is dropped, and the file is
+/// always 3-channel colour (a grey image reads back as 3 equal channels).
 void save_image(const std::string& path, const Image& image, int jpeg_quality = 92);
 
 /// True when the extension of `path` is one save_image can write.

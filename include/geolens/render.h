@@ -38,7 +38,10 @@ struct RenderOptions {
 /// mesh.screen_width x mesh.screen_height to options.width x options.height) and samples the
 /// source at the interpolated source coordinate. The level of detail is chosen per triangle
 /// from its screen -> source Jacobian, so a minified context does not alias and a magnified
-/// focus is smooth. The output has the pyramid's channel count.
+/// focus is smooth. The output has the pyramid's channel count. Coverage is exact (vertices
+/// snapped to 1/256 pixel, a top-left style tie rule), so a pixel on an edge shared by two
+/// triangles is drawn once; where triangles overlap (a folded map), the later one in F is on top,
+/// whatever the thread count. Texels are blended with 8-bit weights, as texture hardware does.
 Image render(const WarpMesh& mesh, const MipPyramid& source, const RenderOptions& options);
 
 }  // namespace geolens
