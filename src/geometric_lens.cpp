@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "geolens/distortion.h"
@@ -103,15 +104,19 @@ LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
     h[k] = lenses[k].zoom == 1 ? 0.0 : initial_height(lenses[k]);
   }
   StageTimings sum;
-  LensResult r;
+  LensResult best;
+  double best_miss = std::numeric_limits<double>::infinity();
   for (int solve = 1;; ++solve) {
-    r = solve_with_heights(lenses, h);
+    LensResult r = solve_with_heights(lenses, h);
     sum.lift += r.timings.lift;
     sum.texture += r.timings.texture;
     sum.factorize += r.timings.factorize;
     sum.iterate += r.timings.iterate;
     sum.total += r.timings.total;
-    r.solves = solve;
+    // Keep the solve whose worst lens is closest to its zoom, should calibration not converge.
+    double miss = 0;
+    for (size_t k = 0; k < n; ++k)
+      miss = std::max(miss, std::abs(std::log(r.zoom_measured[k] / lenses[k].zoom)));
     bool done = true;
     for (size_t k = 0; k < n; ++k) {
       if (h[k] == 0) continue;
@@ -137,10 +142,17 @@ LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
         h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
       }
     }
-    if (done || solve >= options_.max_calibration_solves) break;
+    if (miss < best_miss) {
+      best_miss = miss;
+      best = std::move(r);
+    }
+    if (done || solve >= options_.max_calibration_solves) {
+      best.solves = solve;
+      break;
+    }
   }
-  r.timings = sum;
-  return r;
+  best.timings = sum;
+  return best;
 }
 
 }  // namespace geolens

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geolens/distortion.h"
 #include "geolens/errors.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/image.h"
@@ -175,6 +176,12 @@ int run_magnify(const MagnifyArgs& a) {
                 << " of the " << lenses[k].zoom << " requested\n";
     }
   }
+  const DistortionSummary distortion = summarize(measure_triangles(result.warp));
+  if (distortion.flipped > 0) {
+    std::cerr << "geolens: warning: " << distortion.flipped
+              << " triangles are flipped (folded); try --texture cotan, a lower zoom or a finer "
+                 "--mesh\n";
+  }
 
   const auto render_start = Clock::now();
   const MipPyramid pyramid(source);
@@ -198,7 +205,8 @@ int run_magnify(const MagnifyArgs& a) {
   }
   if (!a.stats.empty()) {
     const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    const nlohmann::json stats = cli::make_stats(lenses, options, result, render_ms, total_ms);
+    const nlohmann::json stats =
+        cli::make_stats(lenses, options, result, distortion, render_ms, total_ms);
     const std::string temporary = a.stats + ".tmp-" + std::to_string(getpid());
     {
       std::ofstream out(temporary);

@@ -1,13 +1,10 @@
 #include "stats.h"
 
-#include "geolens/distortion.h"
-
 namespace geolens::cli {
 
 nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& options,
-                          const LensResult& result, double render_ms, double total_ms) {
-  const TriangleDistortion measures = measure_triangles(result.warp);
-  const DistortionSummary summary = summarize(measures);
+                          const LensResult& result, const DistortionSummary& summary,
+                          double render_ms, double total_ms) {
   nlohmann::json stats;
   stats["vertices"] = result.warp.source.rows();
   stats["triangles"] = result.warp.F.rows();

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "geolens/distortion.h"
 #include "geolens/geometric_lens.h"
 
 namespace geolens::cli {
@@ -11,6 +12,7 @@ namespace geolens::cli {
 /// Everything a user needs to judge one magnify run: mesh size, convergence, flips, per-lens
 /// requested and measured zoom, distortion and stage timings (milliseconds).
 nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& options,
-                          const LensResult& result, double render_ms, double total_ms);
+                          const LensResult& result, const DistortionSummary& distortion,
+                          double render_ms, double total_ms);
 
 }  // namespace geolens::cli
