@@ -15,14 +15,12 @@ namespace {
 // height the calibration finds for zoom 2 with the default options (h0 = 0.76 r).
 struct Scene {
   explicit Scene(int mesh) : grid(make_grid(1024, 1024, mesh)) {
-    lens.roi.center = {512, 512};
-    lens.roi.radius = 150;
     lifted = lift(grid.V, {lens}, {0.76 * 150});
     fixed.resize(grid.sides.size());
     for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || grid.sides[i];
   }
   Grid grid;
-  Lens lens;
+  Lens lens{Region::circle({512, 512}, 150)};
   Lifted lifted;
   std::vector<char> fixed;
 };
@@ -77,9 +75,7 @@ void BM_SolveZoom2(benchmark::State& state) {
   LensOptions o;
   o.mesh = int(state.range(0));
   const GeometricLens lens(1024, 1024, o);
-  Lens l;
-  l.roi.center = {512, 512};
-  l.roi.radius = 150;
+  const Lens l{Region::circle({512, 512}, 150)};
   int solves = 0;
   for (auto _ : state) solves = lens.solve({l}).solves;
   state.counters["solves"] = solves;

@@ -21,7 +21,7 @@ double ms_since(Clock::time_point start) {
 // default options (cotan texture, paper weights) on a 100x100 grid at zoom 1.5 to 3.
 double initial_height(const Lens& lens) {
   const double per_log_zoom[] = {1.08, 2.3, 1.95};  // gaussian, sphere, mesa
-  return lens.roi.radius * per_log_zoom[int(lens.profile)] * std::log(lens.zoom);
+  return lens.region.size() * per_log_zoom[int(lens.profile)] * std::log(lens.zoom);
 }
 
 // Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
@@ -84,8 +84,8 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
 
   const TriangleDistortion measures = measure_triangles(r.warp);
   for (const Lens& lens : lenses) {
-    const double radius = std::max(grid_.cell, 0.05 * lens.roi.radius);
-    r.zoom_measured.push_back(magnification_at(r.warp, measures, lens.roi.center, radius));
+    const double radius = std::max(grid_.cell, 0.05 * lens.region.size());
+    r.zoom_measured.push_back(magnification_at(r.warp, measures, lens.region.peak(), radius));
   }
   r.solves = 1;
   r.timings.total = ms_since(start);

@@ -7,22 +7,30 @@
 
 namespace geolens {
 
-double CircleRoi::depth(const Eigen::Vector2d& p) const {
-  const double d = (p - center).norm();
-  return d >= radius ? 0.0 : 1.0 - d / radius;
-}
-
 void validate_lens(const Lens& lens, double width, double height) {
-  const Eigen::Vector2d& c = lens.roi.center;
-  require(c.allFinite(), "validate_lens", "lens centre is not finite");
-  require(std::isfinite(lens.roi.radius) && lens.roi.radius > 0, "validate_lens",
-          "lens radius must be a positive number, got " + std::to_string(lens.roi.radius));
-  require(c.x() >= 0 && c.x() <= width && c.y() >= 0 && c.y() <= height, "validate_lens",
-          "lens centre (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) +
-              ") is outside the " + std::to_string(int(width)) + "x" + std::to_string(int(height)) +
-              " image");
+  auto inside = [&](const Eigen::Vector2d& p) {
+    return p.x() >= 0 && p.x() <= width && p.y() >= 0 && p.y() <= height;
+  };
+  auto where = [](const Eigen::Vector2d& p) {
+    return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
+  };
+  const std::string image = std::to_string(int(width)) + "x" + std::to_string(int(height));
+  if (lens.region.kind() == RegionKind::kCircle) {
+    require(inside(lens.region.peak()), "validate_lens",
+            "lens centre " + where(lens.region.peak()) + " is outside the " + image + " image");
+  }
+  for (const Eigen::Vector2d& v : lens.region.vertices()) {
+    require(inside(v), "validate_lens",
+            "polygon vertex " + where(v) + " is outside the " + image + " image");
+  }
   require(std::isfinite(lens.zoom) && lens.zoom >= 1 && lens.zoom <= 8, "validate_lens",
           "zoom must be in [1, 8], got " + std::to_string(lens.zoom));
+}
+
+double lens_height(const Lens& lens, double h0, const Eigen::Vector2d& p) {
+  const double t = lens.region.depth(p);
+  if (t <= 0) return 0.0;
+  return h0 * lens.region.thickness(p) / lens.region.size() * profile_value(lens.profile, t);
 }
 
 Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
@@ -39,12 +47,12 @@ Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
     require(std::isfinite(heights[k]) && heights[k] >= 0, "lift",
             "height must be finite and >= 0, got " + std::to_string(heights[k]));
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double t = lenses[k].roi.depth(V.row(i).transpose());
-      if (t <= 0) continue;
-      const double p = profile_value(lenses[k].profile, t);
+      const Eigen::Vector2d p = V.row(i).transpose();
+      if (lenses[k].region.depth(p) <= 0) continue;
+      const double level = lens_height(lenses[k], 1.0, p);
       out.inside[size_t(i)] = 1;
-      out.level(i) = std::max(out.level(i), p);
-      out.V(i, 2) = std::max(out.V(i, 2), heights[k] * p);
+      out.level(i) = std::max(out.level(i), level);
+      out.V(i, 2) = std::max(out.V(i, 2), heights[k] * level);
     }
   }
   return out;

@@ -12,10 +12,7 @@ namespace geolens {
 namespace {
 
 Lens centred_lens(double size, double radius) {
-  Lens lens;
-  lens.roi.center = {size / 2, size / 2};
-  lens.roi.radius = radius;
-  return lens;
+  return Lens{Region::circle({size / 2, size / 2}, radius)};
 }
 
 // A 400 px image on a 41-vertex grid with a gaussian bump of height h0 = r at the centre.

@@ -11,12 +11,7 @@ namespace geolens {
 namespace {
 
 Lens circle(double x, double y, double radius, double zoom, Profile profile) {
-  Lens lens;
-  lens.roi.center = {x, y};
-  lens.roi.radius = radius;
-  lens.zoom = zoom;
-  lens.profile = profile;
-  return lens;
+  return Lens{Region::circle({x, y}, radius), zoom, profile};
 }
 
 // The acceptance case: 1024 x 1024, r = 150 at the centre, default options.

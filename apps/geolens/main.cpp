@@ -18,6 +18,7 @@
 #include "geolens/image.h"
 #include "geolens/mesh_io.h"
 #include "geolens/render.h"
+#include "lens_args.h"
 #include "stats.h"
 
 namespace fs = std::filesystem;
@@ -27,50 +28,11 @@ namespace {
 
 struct MagnifyArgs {
   std::string input, output, stats, export_mesh, before_after, size;
-  std::vector<std::string> lenses;
-  double zoom = 2.0;
-  std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
-              boundary = "sliding";
-  double alpha = 0.0, tolerance = 1e-3;
-  int mesh = 100, max_iterations = 100;
+  cli::LensArgs lens;
 };
-
-double parse_number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  require(!text.empty() && end == text.c_str() + text.size(), "--lens",
-          what + " '" + text + "' is not a number");
-  return value;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1) {
-    parts.push_back(text.substr(start, at - start));
-  }
-  parts.push_back(text.substr(start));
-  return parts;
-}
-
-// "circle:CX,CY,R[:ZOOM]" in source pixels.
-Lens parse_lens(const std::string& spec, double default_zoom, Profile profile) {
-  const std::vector<std::string> parts = split(spec, ':');
-  require(parts.size() >= 2 && parts.size() <= 3 && parts[0] == "circle", "--lens",
-          "expected circle:CX,CY,R[:ZOOM], got '" + spec + "'");
-  const std::vector<std::string> numbers = split(parts[1], ',');
-  require(numbers.size() == 3, "--lens", "expected circle:CX,CY,R[:ZOOM], got '" + spec + "'");
-  Lens lens;
-  lens.roi.center = {parse_number(numbers[0], "centre x"), parse_number(numbers[1], "centre y")};
-  lens.roi.radius = parse_number(numbers[2], "radius");
-  lens.zoom = parts.size() == 3 ? parse_number(parts[2], "zoom") : default_zoom;
-  lens.profile = profile;
-  return lens;
-}
 
 // "WxH", each side in [1, 16384].
 std::pair<int, int> parse_size(const std::string& text) {
-  const std::vector<std::string> parts = split(text, 'x');
   auto side = [&](const std::string& s) {
     char* end = nullptr;
     const long v = std::strtol(s.c_str(), &end, 10);
@@ -78,8 +40,9 @@ std::pair<int, int> parse_size(const std::string& text) {
             "expected WxH with sides in [1, 16384], got '" + text + "'");
     return int(v);
   };
-  require(parts.size() == 2, "--size", "expected WxH, got '" + text + "'");
-  return {side(parts[0]), side(parts[1])};
+  const size_t x = text.find('x');
+  require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
+  return {side(text.substr(0, x)), side(text.substr(x + 1))};
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -99,13 +62,14 @@ void check_output_path(const std::string& path, const std::string& input, const 
 // Draws a 2-pixel outline of each lens circle (scaled to the image) in red.
 void outline_lenses(Image& image, const std::vector<Lens>& lenses, double scale_x, double scale_y) {
   for (const Lens& lens : lenses) {
-    const double r = lens.roi.radius * std::sqrt(scale_x * scale_y);
+    if (lens.region.kind() != RegionKind::kCircle) continue;
+    const double r = lens.region.size() * std::sqrt(scale_x * scale_y);
     const int steps = int(2 * M_PI * r * 2) + 8;
     for (int s = 0; s < steps; ++s) {
       const double a = 2 * M_PI * s / steps;
       for (double dr = -1; dr <= 1; dr += 1) {
-        const int x = int(lens.roi.center.x() * scale_x + (r + dr) * std::cos(a));
-        const int y = int(lens.roi.center.y() * scale_y + (r + dr) * std::sin(a));
+        const int x = int(lens.region.peak().x() * scale_x + (r + dr) * std::cos(a));
+        const int y = int(lens.region.peak().y() * scale_y + (r + dr) * std::sin(a));
         if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
         uint8_t* p = image.at(x, y);
         const uint8_t red[4] = {220, 30, 30, 255};
@@ -147,24 +111,9 @@ int run_magnify(const MagnifyArgs& a) {
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
     check_output_path(a.before_after, a.input, "--before-after");
   }
-  LensOptions options;
-  options.mesh = a.mesh;
-  options.texture = parse_texture_weights(a.texture);
-  options.flatten.weights = parse_flatten_weights(a.weights);
-  options.flatten.metric = parse_metric(a.metric);
-  options.flatten.alpha = a.alpha;
-  options.flatten.boundary = parse_boundary(a.boundary);
-  options.flatten.tolerance = a.tolerance;
-  options.flatten.max_iterations = a.max_iterations;
-  validate(options);
-  require(std::isfinite(a.zoom) && a.zoom >= 1 && a.zoom <= 8, "--zoom",
-          "zoom must be in [1, 8], got " + std::to_string(a.zoom));
-  const Profile profile = parse_profile(a.profile);
-  std::vector<Lens> lenses;
-  for (const std::string& spec : a.lenses) lenses.push_back(parse_lens(spec, a.zoom, profile));
-
+  const LensOptions options = cli::parse_options(a.lens);
   const Image source = load_image(a.input);
-  for (const Lens& lens : lenses) validate_lens(lens, source.width, source.height);
+  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
   const auto [width, height] =
       a.size.empty() ? std::pair{source.width, source.height} : parse_size(a.size);
 
@@ -228,31 +177,8 @@ int main(int argc, char** argv) {
   CLI::App* magnify = app.add_subcommand("magnify", "magnify lens regions of an image");
   magnify->add_option("input", a.input, "input image (PNG or JPEG)")->required();
   magnify->add_option("-o,--output", a.output, "output image (.png, .jpg)")->required();
-  magnify
-      ->add_option("--lens", a.lenses,
-                   "circle:CX,CY,R[:ZOOM] in source pixels; repeat for several lenses")
-      ->required();
-  magnify->add_option("--zoom", a.zoom, "zoom of lenses that give none, in [1, 8]")
-      ->capture_default_str();
-  magnify->add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
-      ->capture_default_str();
-  magnify->add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
-      ->capture_default_str();
-  magnify->add_option("--metric", a.metric, "paper (Eq. 6 alpha blend) or spectrum (ARAP..ASAP)")
-      ->capture_default_str();
-  magnify->add_option("--alpha", a.alpha, "metric blend: paper [0, 1), spectrum [0, 1]")
-      ->capture_default_str();
-  magnify->add_option("--weights", a.weights, "flattening weights: paper or cotan")
-      ->capture_default_str();
-  magnify->add_option("--texture", a.texture, "texture map weights: cotan or mvc")
-      ->capture_default_str();
-  magnify->add_option("--boundary", a.boundary, "image border: sliding, fixed or free")
-      ->capture_default_str();
+  cli::add_lens_options(*magnify, a.lens);
   magnify->add_option("--size", a.size, "output size WxH (default: the input's)");
-  magnify->add_option("--tolerance", a.tolerance, "relative energy change that stops iterating")
-      ->capture_default_str();
-  magnify->add_option("--max-iterations", a.max_iterations, "cap on flattening iterations")
-      ->capture_default_str();
   magnify->add_option("--stats", a.stats, "write run statistics as JSON");
   magnify->add_option("--export-mesh", a.export_mesh,
                       "write PREFIX_3d.obj (lifted) and PREFIX_flat.obj (flattened)");

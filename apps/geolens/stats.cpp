@@ -23,13 +23,21 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
                       {"max_iterations", options.flatten.max_iterations}};
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < lenses.size(); ++k) {
-    list.push_back({{"kind", "circle"},
-                    {"center", {lenses[k].roi.center.x(), lenses[k].roi.center.y()}},
-                    {"radius", lenses[k].roi.radius},
-                    {"profile", to_string(lenses[k].profile)},
-                    {"zoom_requested", lenses[k].zoom},
-                    {"zoom_measured", result.zoom_measured[k]},
-                    {"height", result.heights[k]}});
+    const Region& region = lenses[k].region;
+    const Eigen::AlignedBox2d box = region.bounds();
+    nlohmann::json lens = {{"kind", to_string(region.kind())},
+                           {"bbox", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}},
+                           {"peak", {region.peak().x(), region.peak().y()}},
+                           {"size", region.size()},
+                           {"profile", to_string(lenses[k].profile)},
+                           {"zoom_requested", lenses[k].zoom},
+                           {"zoom_measured", result.zoom_measured[k]},
+                           {"height", result.heights[k]}};
+    if (region.kind() == RegionKind::kCircle) {
+      lens["center"] = {region.peak().x(), region.peak().y()};
+      lens["radius"] = region.size();
+    }
+    list.push_back(lens);
   }
   stats["lenses"] = list;
   stats["distortion"] = {{"conformal_mean", summary.conformal_mean},

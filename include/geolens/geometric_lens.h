@@ -36,7 +36,7 @@ struct LensResult {
   Eigen::MatrixX2d flat;              ///< #V x 2 the flattening before framing, pixels
   FlattenResult flattening;           ///< iterations and energies of the final solve
   std::vector<double> heights;        ///< per lens: calibrated centre height h0, pixels
-  std::vector<double> zoom_measured;  ///< per lens: magnification at its centre
+  std::vector<double> zoom_measured;  ///< per lens: magnification at its region's peak
   int solves = 0;                     ///< full solves made by the calibration
   StageTimings timings;
 };
@@ -53,7 +53,7 @@ class GeometricLens {
   /// lens, SolverError if a system cannot be solved.
   LensResult solve(const std::vector<Lens>& lenses) const;
 
-  /// One solve with given centre heights (pixels), no calibration; fills `zoom_measured`.
+  /// One solve with given peak heights (pixels), no calibration; fills `zoom_measured`.
   LensResult solve_with_heights(const std::vector<Lens>& lenses,
                                 const std::vector<double>& heights) const;
 

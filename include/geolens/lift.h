@@ -11,23 +11,26 @@ namespace geolens {
 
 /// One lens: where, how much, and with which bump shape.
 struct Lens {
-  CircleRoi roi;
-  double zoom = 2.0;  ///< requested magnification at the centre, in [1, 8]
+  Region region;
+  double zoom = 2.0;  ///< requested magnification at the region's peak, in [1, 8]
   Profile profile = Profile::kGaussian;
 };
 
-/// Throws InvalidInput unless the lens is usable on a width x height image: finite values,
-/// radius > 0, centre inside the image, zoom in [1, 8].
+/// Throws InvalidInput unless the lens is usable on a width x height image: zoom in [1, 8], a
+/// circle's centre or every polygon vertex inside the image.
 void validate_lens(const Lens& lens, double width, double height);
 
 /// The lifted mesh: the grid's vertices with heights.
 struct Lifted {
-  Eigen::MatrixX3d V;     ///< #V x 3: x, y as the grid, z = max over lenses of h0 * profile, pixels
-  Eigen::VectorXd level;  ///< #V: max over lenses of profile(depth) in [0, 1] (height / h0)
+  Eigen::MatrixX3d V;        ///< #V x 3: x, y as given, z = max over lenses of their height, pixels
+  Eigen::VectorXd level;     ///< #V: max over lenses of height / h0, in [0, 1]
   std::vector<char> inside;  ///< #V: 1 where the vertex lies strictly inside some ROI
 };
 
-/// Lifts the 2D vertices `V` (#V x 2, pixels) over `lenses`, lens i with centre height
+/// Height of one lens at p (pixels): h0 * thickness(p) / size() * profile(depth(p)), see roi.h.
+double lens_height(const Lens& lens, double h0, const Eigen::Vector2d& p);
+
+/// Lifts the 2D vertices `V` (#V x 2, pixels) over `lenses`, lens i with peak height
 /// `heights[i]` (pixels, >= 0). Overlapping lenses combine by max.
 Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
             const std::vector<double>& heights);

@@ -1,0 +1,104 @@
+#include "lens_args.h"
+
+#include <cmath>
+
+#include "geolens/errors.h"
+
+namespace geolens::cli {
+
+namespace {
+
+double parse_number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  require(!text.empty() && end == text.c_str() + text.size(), "--lens",
+          what + " '" + text + "' is not a number");
+  return value;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1) {
+    parts.push_back(text.substr(start, at - start));
+  }
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+const char* kLensSyntax = "expected circle:CX,CY,R[:ZOOM]";
+
+std::vector<Region> parse_regions(const std::string& spec, std::string& zoom) {
+  const std::vector<std::string> parts = split(spec, ':');
+  require(parts.size() >= 2 && parts.size() <= 3, "--lens",
+          std::string(kLensSyntax) + ", got '" + spec + "'");
+  zoom = parts.size() == 3 ? parts[2] : "";
+  if (parts[0] == "circle") {
+    const std::vector<std::string> numbers = split(parts[1], ',');
+    require(numbers.size() == 3, "--lens", std::string(kLensSyntax) + ", got '" + spec + "'");
+    const double radius = parse_number(numbers[2], "radius");
+    require(std::isfinite(radius) && radius > 0, "--lens",
+            "radius must be a positive number, got '" + numbers[2] + "'");
+    return {Region::circle(
+        {parse_number(numbers[0], "centre x"), parse_number(numbers[1], "centre y")}, radius)};
+  }
+  throw InvalidInput("--lens: " + std::string(kLensSyntax) + ", got '" + spec + "'");
+}
+
+}  // namespace
+
+void add_lens_options(CLI::App& c, LensArgs& a) {
+  c.add_option("--lens", a.lenses,
+               "circle:CX,CY,R[:ZOOM] in source pixels; repeat for several lenses")
+      ->required();
+  c.add_option("--zoom", a.zoom, "zoom of lenses that give none, in [1, 8]")->capture_default_str();
+  c.add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
+      ->capture_default_str();
+  c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
+      ->capture_default_str();
+  c.add_option("--metric", a.metric, "paper (Eq. 6 alpha blend) or spectrum (ARAP..ASAP)")
+      ->capture_default_str();
+  c.add_option("--alpha", a.alpha, "metric blend: paper [0, 1), spectrum [0, 1]")
+      ->capture_default_str();
+  c.add_option("--weights", a.weights, "flattening weights: paper or cotan")->capture_default_str();
+  c.add_option("--texture", a.texture, "texture map weights: cotan or mvc")->capture_default_str();
+  c.add_option("--boundary", a.boundary, "image border: sliding, fixed or free")
+      ->capture_default_str();
+  c.add_option("--tolerance", a.tolerance, "relative energy change that stops iterating")
+      ->capture_default_str();
+  c.add_option("--max-iterations", a.max_iterations, "cap on flattening iterations")
+      ->capture_default_str();
+}
+
+LensOptions parse_options(const LensArgs& a) {
+  LensOptions options;
+  options.mesh = a.mesh;
+  options.texture = parse_texture_weights(a.texture);
+  options.flatten.weights = parse_flatten_weights(a.weights);
+  options.flatten.metric = parse_metric(a.metric);
+  options.flatten.alpha = a.alpha;
+  options.flatten.boundary = parse_boundary(a.boundary);
+  options.flatten.tolerance = a.tolerance;
+  options.flatten.max_iterations = a.max_iterations;
+  validate(options);
+  require(std::isfinite(a.zoom) && a.zoom >= 1 && a.zoom <= 8, "--zoom",
+          "zoom must be in [1, 8], got " + std::to_string(a.zoom));
+  parse_profile(a.profile);
+  return options;
+}
+
+std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
+  const Profile profile = parse_profile(a.profile);
+  std::vector<Lens> lenses;
+  for (const std::string& spec : a.lenses) {
+    std::string zoom_text;
+    for (Region& region : parse_regions(spec, zoom_text)) {
+      const double zoom = zoom_text.empty() ? a.zoom : parse_number(zoom_text, "zoom");
+      lenses.push_back(Lens{std::move(region), zoom, profile});
+      validate_lens(lenses.back(), source.width, source.height);
+    }
+  }
+  return lenses;
+}
+
+}  // namespace geolens::cli

@@ -1,0 +1,34 @@
+#pragma once
+// The lens options shared by every geolens subcommand that places lenses.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "geolens/geometric_lens.h"
+#include "geolens/image.h"
+
+namespace geolens::cli {
+
+/// The raw command-line values; parse() turns them into lenses and options.
+struct LensArgs {
+  std::vector<std::string> lenses;
+  double zoom = 2.0;
+  std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
+              boundary = "sliding";
+  double alpha = 0.0, tolerance = 1e-3;
+  int mesh = 100, max_iterations = 100;
+};
+
+/// Registers --lens (required), --zoom, --profile, --mesh, --metric, --alpha, --weights,
+/// --texture, --boundary, --tolerance and --max-iterations on `command`.
+void add_lens_options(CLI::App& command, LensArgs& args);
+
+/// The solver options; throws InvalidInput for an unknown name or a value out of range.
+LensOptions parse_options(const LensArgs& args);
+
+/// The lenses, validated against `source`: `circle:CX,CY,R[:ZOOM]` (source pixels).
+/// Throws InvalidInput naming the offending --lens value.
+std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
+
+}  // namespace geolens::cli
