@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geolens/errors.h"
 #include "geolens/grid.h"
@@ -164,6 +165,37 @@ double Flattener::energy(const Eigen::MatrixX2d& X) const {
   return e;
 }
 
+double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
+                                       const Eigen::MatrixX2d& next) const {
+  // det(A + s B) = det A + s (a00 b11 + a11 b00 - a01 b10 - a10 b01) + s^2 det B for the edge
+  // matrices A of X and B of next - X; the first positive root bounds the step.
+  double s_max = std::numeric_limits<double>::infinity();
+  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+    Eigen::Matrix2d A, B;
+    for (int k = 0; k < 2; ++k) {
+      A.col(k) = (X.row(F_(f, k + 1)) - X.row(F_(f, 0))).transpose();
+      B.col(k) = (next.row(F_(f, k + 1)) - next.row(F_(f, 0))).transpose() - A.col(k);
+    }
+    const double c = A.determinant();
+    if (c <= 0) continue;  // already degenerate or flipped: the bound cannot help it
+    const double b = A(0, 0) * B(1, 1) + A(1, 1) * B(0, 0) - A(0, 1) * B(1, 0) - A(1, 0) * B(0, 1);
+    const double a = B.determinant();
+    double root = std::numeric_limits<double>::infinity();
+    if (std::abs(a) < 1e-300) {
+      if (b < 0) root = -c / b;
+    } else {
+      const double disc = b * b - 4 * a * c;
+      if (disc >= 0) {
+        const double q = std::sqrt(disc);
+        for (double s : {(-b - q) / (2 * a), (-b + q) / (2 * a)})
+          if (s > 0) root = std::min(root, s);
+      }
+    }
+    s_max = std::min(s_max, root);
+  }
+  return s_max > 1.0 ? 1.0 : std::min(1.0, 0.9 * s_max);
+}
+
 FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
   require(X0.rows() == rest_.rows(), "Flattener::solve",
           "initial guess has " + std::to_string(X0.rows()) + " rows, expected " +
@@ -205,11 +237,19 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
         b.row(F_(Eigen::Index(f), c)) -= d.transpose();
       }
     }
+    Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
-      r.X.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0));
-      r.X.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1));
+      next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0));
+      next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1));
     } else {
-      r.X = solver_x_->solve(b, fixed_values);
+      next = solver_x_->solve(b, fixed_values);
+    }
+    const double step = options_.flip_safe ? max_orientation_step(r.X, next) : 1.0;
+    if (step < 1.0) {
+      ++r.bounded_steps;
+      r.X += step * (next - r.X);
+    } else {
+      r.X = std::move(next);
     }
     ++r.iterations;
     const double previous = r.energy.back();

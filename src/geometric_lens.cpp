@@ -44,6 +44,7 @@ void validate(const LensOptions& o) {
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");
+  validate(o.subdivision);
   validate(o.flatten);
 }
 
@@ -58,26 +59,41 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   const auto start = Clock::now();
   LensResult r;
   r.heights = heights;
-  const Lifted lifted = lift(grid_.V, lenses, heights);
+  r.mesh = subdivide(
+      grid_,
+      [&](const Eigen::Vector2d& p) {
+        double z = 0;
+        for (size_t k = 0; k < lenses.size(); ++k)
+          z = std::max(z, lens_height(lenses[k], heights[k], p));
+        return z;
+      },
+      options_.subdivision);
+  const Lifted lifted = lift(r.mesh.V, lenses, heights);
   r.timings.lift = ms_since(start);
 
   auto t = Clock::now();
   std::vector<char> fixed(lifted.inside.size());
-  for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || grid_.sides[i] != 0;
-  r.warp.source = harmonic_texture(lifted.V, grid_.F, fixed, grid_.V, options_.texture);
+  for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || r.mesh.sides[i] != 0;
+  r.warp.source = harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, options_.texture);
+  if (options_.texture == TextureWeights::kCotan && count_folds(r.warp.source, r.mesh.F) > 0) {
+    // Negative cotan weights folded the map (steep walls): redo it with non-negative weights.
+    r.warp.source =
+        harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, TextureWeights::kPositiveCotan);
+    r.texture_fallback = true;
+  }
   r.timings.texture = ms_since(t);
 
   t = Clock::now();
-  const Flattener flattener(lifted.V, grid_.F, lifted.level, grid_.sides, options_.flatten);
+  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, options_.flatten);
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
-  r.flattening = flattener.solve(grid_.V);
+  r.flattening = flattener.solve(r.mesh.V);
   r.timings.iterate = ms_since(t);
 
   r.lifted = lifted.V;
   r.flat = r.flattening.X;
-  r.warp.F = grid_.F;
+  r.warp.F = r.mesh.F;
   r.warp.screen = frame(r.flat, options_.flatten.boundary, width_, height_);
   r.warp.screen_width = int(std::lround(width_));
   r.warp.screen_height = int(std::lround(height_));

@@ -13,12 +13,30 @@ namespace geolens {
 TextureWeights parse_texture_weights(const std::string& name) {
   if (name == "mvc") return TextureWeights::kMeanValue;
   if (name == "cotan") return TextureWeights::kCotan;
+  if (name == "cotan+") return TextureWeights::kPositiveCotan;
   throw InvalidInput("parse_texture_weights: unknown texture weights '" + name +
-                     "' (expected mvc or cotan)");
+                     "' (expected cotan, cotan+ or mvc)");
 }
 
 std::string to_string(TextureWeights weights) {
-  return weights == TextureWeights::kMeanValue ? "mvc" : "cotan";
+  switch (weights) {
+    case TextureWeights::kMeanValue:
+      return "mvc";
+    case TextureWeights::kCotan:
+      return "cotan";
+    case TextureWeights::kPositiveCotan:
+      return "cotan+";
+  }
+  return "?";
+}
+
+int count_folds(const Eigen::MatrixX2d& uv, const Eigen::MatrixX3i& F) {
+  int folds = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector2d a = uv.row(F(f, 0)), b = uv.row(F(f, 1)), c = uv.row(F(f, 2));
+    folds += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0;
+  }
+  return folds;
 }
 
 Eigen::SparseMatrix<double> harmonic_weights(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
@@ -32,9 +50,10 @@ Eigen::SparseMatrix<double> harmonic_weights(const Eigen::MatrixX3d& V3, const E
       const Eigen::Vector3d a = V3.row(j) - V3.row(i), b = V3.row(l) - V3.row(i);
       const double la = a.norm(), lb = b.norm();
       const double cos_angle = a.dot(b), sin_angle = a.cross(b).norm();
-      if (weights == TextureWeights::kCotan) {
+      if (weights != TextureWeights::kMeanValue) {
         // cot of the angle at i weighs the opposite edge (j, l), half per triangle.
-        const double c = 0.5 * cos_angle / sin_angle;
+        double c = 0.5 * cos_angle / sin_angle;
+        if (weights == TextureWeights::kPositiveCotan) c = std::max(0.0, c);
         w.emplace_back(j, l, c);
         w.emplace_back(l, j, c);
       } else {
@@ -63,7 +82,7 @@ Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::Matri
   for (Eigen::Index i = 0; i < W.rows(); ++i) diagonal.emplace_back(i, i, degree(i));
   D.setFromTriplets(diagonal.begin(), diagonal.end());
   const Eigen::SparseMatrix<double> A = D - W;
-  const DirichletSolver solver(A, fixed, weights == TextureWeights::kCotan);
+  const DirichletSolver solver(A, fixed, weights != TextureWeights::kMeanValue);
   return solver.solve(Eigen::MatrixXd::Zero(uv.rows(), 2), uv);
 }
 

@@ -117,6 +117,34 @@ TEST(Flattener, SpectrumChangesTheConvergedResultMonotonically) {
   }
 }
 
+int flipped(const Eigen::MatrixX2d& X, const Eigen::MatrixX3i& F) {
+  int count = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector2d a = X.row(F(f, 0)), b = X.row(F(f, 1)), c = X.row(F(f, 2));
+    count += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0;
+  }
+  return count;
+}
+
+// A bump twice as tall as wide: the plain local/global iteration folds triangles.
+TEST(Flattener, FlipSafeStepKeepsEveryOrientation) {
+  const Grid grid = make_grid(400, 400, 41);
+  const Lifted tall = lift(grid.V, {centred_lens(400, 100)}, {200.0});
+  FlattenOptions o;
+  o.tolerance = 1e-6;
+  o.max_iterations = 200;
+  o.flip_safe = false;
+  const FlattenResult unsafe = flatten(tall.V, grid.F, tall.level, grid.sides, o);
+  ASSERT_GT(flipped(unsafe.X, grid.F), 0);
+  o.flip_safe = true;
+  const FlattenResult safe = flatten(tall.V, grid.F, tall.level, grid.sides, o);
+  EXPECT_EQ(flipped(safe.X, grid.F), 0);
+  EXPECT_GT(safe.bounded_steps, 0);
+  for (size_t k = 1; k < safe.energy.size(); ++k) EXPECT_LE(safe.energy[k], safe.energy[k - 1]);
+  // The price of keeping orientations is small.
+  EXPECT_LT(safe.energy.back(), 1.02 * unsafe.energy.back());
+}
+
 TEST(Flattener, RejectsBadOptions) {
   const Bump b;
   FlattenOptions o;

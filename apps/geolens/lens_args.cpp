@@ -56,6 +56,9 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
   c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
       ->capture_default_str();
+  c.add_option("--subdivide", a.subdivide,
+               "bisection rounds refining triangles the lift stretches, in [0, 8] (0: none)")
+      ->capture_default_str();
   c.add_option("--metric", a.metric, "paper (Eq. 6 alpha blend) or spectrum (ARAP..ASAP)")
       ->capture_default_str();
   c.add_option("--alpha", a.alpha, "metric blend: paper [0, 1), spectrum [0, 1]")
@@ -73,6 +76,7 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
 LensOptions parse_options(const LensArgs& a) {
   LensOptions options;
   options.mesh = a.mesh;
+  options.subdivision.max_levels = a.subdivide;
   options.texture = parse_texture_weights(a.texture);
   options.flatten.weights = parse_flatten_weights(a.weights);
   options.flatten.metric = parse_metric(a.metric);

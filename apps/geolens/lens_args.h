@@ -17,10 +17,11 @@ struct LensArgs {
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
               boundary = "sliding";
   double alpha = 0.0, tolerance = 1e-3;
-  int mesh = 100, max_iterations = 100;
+  int mesh = 100, max_iterations = 100, subdivide = 2;
 };
 
-/// Registers --lens (required), --zoom, --profile, --mesh, --metric, --alpha, --weights,
+/// Registers --lens (required), --zoom, --profile, --mesh, --subdivide, --metric, --alpha,
+/// --weights,
 /// --texture, --boundary, --tolerance and --max-iterations on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
 

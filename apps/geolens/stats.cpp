@@ -12,8 +12,11 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
   stats["converged"] = result.flattening.converged;
   stats["energy"] = result.flattening.energy;
   stats["calibration_solves"] = result.solves;
+  stats["bounded_steps"] = result.flattening.bounded_steps;
+  stats["texture_fallback"] = result.texture_fallback;
   stats["flipped"] = summary.flipped;
   stats["options"] = {{"mesh", options.mesh},
+                      {"subdivide", options.subdivision.max_levels},
                       {"texture", to_string(options.texture)},
                       {"weights", to_string(options.flatten.weights)},
                       {"metric", to_string(options.flatten.metric)},

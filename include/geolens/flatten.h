@@ -54,6 +54,11 @@ struct FlattenOptions {
   Boundary boundary = Boundary::kSliding;
   double tolerance = 1e-3;   ///< stop when |E_k - E_k-1| <= tolerance * E_k-1 (paper: 0.1%)
   int max_iterations = 100;  ///< cap on global steps, >= 1
+  /// Bound each step so no triangle changes orientation: the global step's result X' is taken
+  /// as X + s (X' - X) with s = min(1, 0.9 s_max), s_max the first s at which a triangle of the
+  /// current (flip-free) flattening would degenerate (after Smith and Schaefer 2015's
+  /// flip-preventing line search). The energy still never increases.
+  bool flip_safe = true;
 };
 
 /// Throws InvalidInput unless the options are in range.
@@ -63,6 +68,7 @@ struct FlattenResult {
   Eigen::MatrixX2d X;          ///< #V x 2 flattened positions, pixels (before framing)
   std::vector<double> energy;  ///< energy of the initial guess, then after each global step
   int iterations = 0;          ///< global steps taken
+  int bounded_steps = 0;       ///< steps the flip-safe bound shortened
   bool converged = false;      ///< the tolerance was met before the cap
 };
 
@@ -104,6 +110,8 @@ class Flattener {
     Eigen::Vector3d w;      // w for the edge opposite each corner
   };
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
+  // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
+  double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
   Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;
 
   Eigen::MatrixX3i F_;

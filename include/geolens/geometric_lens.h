@@ -7,6 +7,7 @@
 #include "geolens/flatten.h"
 #include "geolens/grid.h"
 #include "geolens/lift.h"
+#include "geolens/subdivide.h"
 #include "geolens/texture_map.h"
 #include "geolens/warp_mesh.h"
 
@@ -15,6 +16,7 @@ namespace geolens {
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the image's long side, in [4, 1000]
   TextureWeights texture = TextureWeights::kCotan;
+  SubdivisionOptions subdivision;
   FlattenOptions flatten;
   /// Bump heights are calibrated until every lens's measured zoom is within this relative
   /// tolerance of its request, or `max_calibration_solves` full solves were made.
@@ -32,12 +34,15 @@ struct StageTimings {
 
 struct LensResult {
   WarpMesh warp;                      ///< source = texture coordinates, screen = framed flattening
+  PlanarMesh mesh;                    ///< the (subdivided) planar mesh the lift was built on
   Eigen::MatrixX3d lifted;            ///< #V x 3 the lifted mesh of the final solve, pixels
   Eigen::MatrixX2d flat;              ///< #V x 2 the flattening before framing, pixels
   FlattenResult flattening;           ///< iterations and energies of the final solve
   std::vector<double> heights;        ///< per lens: calibrated centre height h0, pixels
   std::vector<double> zoom_measured;  ///< per lens: magnification at its region's peak
-  int solves = 0;                     ///< full solves made by the calibration
+  /// The cotan texture map folded and was redone with non-negative weights (cotan+).
+  bool texture_fallback = false;
+  int solves = 0;  ///< full solves made by the calibration
   StageTimings timings;
 };
 

@@ -10,15 +10,20 @@ namespace geolens {
 /// Which image sides a grid vertex lies on (bit flags).
 enum Side : uint8_t { kLeft = 1, kRight = 2, kTop = 4, kBottom = 8 };
 
-/// A regular grid of nearly square cells covering [0, width] x [0, height], each cell split into
-/// two triangles with alternating diagonals so no direction is favoured.
-struct Grid {
+/// A planar triangle mesh covering the image, a manifold disk whose border lies on the image
+/// sides.
+struct PlanarMesh {
   Eigen::MatrixX2d V;          ///< #V x 2 vertex positions, pixels
   Eigen::MatrixX3i F;          ///< #F x 3 triangles, (b - a) x (c - a) > 0
   std::vector<uint8_t> sides;  ///< #V Side flags, 0 for interior vertices
-  int columns = 0;             ///< vertices per row
-  int rows = 0;                ///< vertices per column
-  double cell = 0;             ///< mean cell side, pixels
+};
+
+/// A regular grid of nearly square cells covering [0, width] x [0, height], each cell split into
+/// two triangles with alternating diagonals so no direction is favoured.
+struct Grid : PlanarMesh {
+  int columns = 0;  ///< vertices per row
+  int rows = 0;     ///< vertices per column
+  double cell = 0;  ///< mean cell side, pixels
 };
 
 /// Builds the grid for a width x height image (pixels, > 0) with `vertices_long_side`

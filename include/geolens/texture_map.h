@@ -11,11 +11,17 @@ namespace geolens {
 /// Edge weights of the discrete harmonic map, both computed on the 3D mesh.
 enum class TextureWeights {
   kMeanValue,  ///< Floater 2003 mean value weights, the paper's choice; not symmetric
-  kCotan,      ///< cotangent weights (Pinkall-Polthier), symmetric
+  kCotan,      ///< cotangent weights (Pinkall-Polthier), symmetric; negative on obtuse angles
+  /// cotangent weights with negative ones set to 0: every weight >= 0, so (Tutte, Floater) the
+  /// map cannot fold where the fixed ring is convex; more distortion than kCotan at low zoom
+  kPositiveCotan,
 };
 
-TextureWeights parse_texture_weights(const std::string& name);  ///< "mvc" | "cotan"
+TextureWeights parse_texture_weights(const std::string& name);  ///< "mvc" | "cotan" | "cotan+"
 std::string to_string(TextureWeights weights);
+
+/// Triangles of F whose texture coordinates (#V x 2) are inverted or degenerate.
+int count_folds(const Eigen::MatrixX2d& uv, const Eigen::MatrixX3i& F);
 
 /// Weight matrix W (#V x #V, row i holds w_ij for the neighbours j of vertex i, zero diagonal)
 /// of the harmonic equation sum_j w_ij (u_i - u_j) = 0, computed on the 3D mesh.
