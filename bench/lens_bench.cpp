@@ -90,3 +90,42 @@ BENCHMARK(BM_SolveZoom2)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// The interactive path: a zoom-2 lens dragged 3 px per frame across the image centre; each
+// iteration is one update() to the 0.1 % tolerance, zoom checked.
+void BM_UpdateMoved(benchmark::State& state) {
+  LensOptions o;
+  o.mesh = int(state.range(0));
+  GeometricLens lens(1024, 1024, o);
+  double x = 400;
+  lens.update({Lens{Region::circle({x, 512}, 150)}});
+  int solves = 0, iterations = 0;
+  for (auto _ : state) {
+    x = x > 620 ? 400 : x + 3;
+    const LensResult& r = lens.update({Lens{Region::circle({x, 512}, 150)}});
+    solves += r.solves;
+    iterations += r.flattening.iterations;
+  }
+  state.counters["solves/update"] = benchmark::Counter(solves, benchmark::Counter::kAvgIterations);
+  state.counters["iterations/update"] =
+      benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
+}
+
+// First placement: a new GeometricLens, nothing cached, calibrated from the first guess.
+void BM_UpdateFirst(benchmark::State& state) {
+  LensOptions o;
+  o.mesh = int(state.range(0));
+  for (auto _ : state) {
+    GeometricLens lens(1024, 1024, o);
+    benchmark::DoNotOptimize(lens.update({Lens{Region::circle({512, 512}, 150)}}));
+  }
+}
+
+BENCHMARK(BM_UpdateMoved)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_UpdateFirst)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace geolens

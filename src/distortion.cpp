@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "geolens/errors.h"
 #include "geolens/svd2.h"
@@ -49,17 +50,17 @@ TriangleDistortion measure_triangles(const WarpMesh& mesh) {
   return d;
 }
 
-double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures,
-                        const Eigen::Vector2d& point, double radius) {
-  double sum = 0, weight = 0;
+namespace {
+
+// Triangles with a source centroid within `radius` of `point`, or else the one containing it.
+std::vector<Eigen::Index> triangles_near(const WarpMesh& mesh, const Eigen::Vector2d& point,
+                                         double radius) {
+  std::vector<Eigen::Index> near;
   Eigen::Index containing = -1;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const Eigen::Vector2d a = mesh.source.row(mesh.F(f, 0)), b = mesh.source.row(mesh.F(f, 1)),
                           c = mesh.source.row(mesh.F(f, 2));
-    if (((a + b + c) / 3.0 - point).norm() <= radius) {
-      sum += measures.magnification(f) * measures.source_area(f);
-      weight += measures.source_area(f);
-    }
+    if (((a + b + c) / 3.0 - point).norm() <= radius) near.push_back(f);
     auto side = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
       const Eigen::Vector2d e = q - p, r = point - p;
       return e.x() * r.y() - e.y() * r.x();
@@ -67,9 +68,31 @@ double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures
     const double s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
     if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) containing = f;
   }
-  if (weight > 0) return sum / weight;
-  require(containing >= 0, "magnification_at", "the point is outside the mesh");
-  return measures.magnification(containing);
+  if (near.empty() && containing >= 0) near.push_back(containing);
+  require(!near.empty(), "magnification_at", "the point is outside the mesh");
+  return near;
+}
+
+}  // namespace
+
+double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures,
+                        const Eigen::Vector2d& point, double radius) {
+  double sum = 0, weight = 0;
+  for (Eigen::Index f : triangles_near(mesh, point, radius)) {
+    sum += measures.magnification(f) * measures.source_area(f);
+    weight += measures.source_area(f);
+  }
+  return weight > 0 ? sum / weight : 0.0;
+}
+
+double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, double radius) {
+  WarpMesh near{Eigen::MatrixX3i(), mesh.source, mesh.screen, mesh.screen_width,
+                mesh.screen_height};
+  const std::vector<Eigen::Index> faces = triangles_near(mesh, point, radius);
+  near.F.resize(Eigen::Index(faces.size()), 3);
+  for (size_t k = 0; k < faces.size(); ++k) near.F.row(Eigen::Index(k)) = mesh.F.row(faces[k]);
+  const TriangleDistortion measures = measure_triangles(near);
+  return magnification_at(near, measures, point, radius);
 }
 
 DistortionSummary summarize(const TriangleDistortion& measures) {

@@ -5,11 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "geolens/errors.h"
 #include "geolens/grid.h"
 #include "geolens/sparse_solver.h"
-#include "geolens/svd2.h"
+#include "parallel.h"
 
 namespace geolens {
 
@@ -67,52 +68,10 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
     : F_(F), rest_(V3.leftCols<2>()), options_(options) {
   validate(options);
   const Eigen::Index n = V3.rows();
-  require(level.size() == n && sides.size() == size_t(n), "Flattener",
-          "level and sides must have one entry per vertex");
+  require(sides.size() == size_t(n), "Flattener", "sides must have one entry per vertex");
   require(F.rows() > 0 && F.minCoeff() >= 0 && F.maxCoeff() < n, "Flattener",
           "faces must index the " + std::to_string(n) + " vertices");
-
-  // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
-  triangles_.resize(size_t(F.rows()));
-  double mean_area = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d e1 = V3.row(F(f, 1)) - V3.row(F(f, 0));
-    const Eigen::Vector3d e2 = V3.row(F(f, 2)) - V3.row(F(f, 0));
-    const double l1 = e1.norm(), cross = e1.cross(e2).norm();
-    require(l1 > 0 && cross > 0, "Flattener",
-            "triangle " + std::to_string(f) + " is degenerate in 3D");
-    Triangle& t = triangles_[size_t(f)];
-    t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
-    t.S_inv = t.S.inverse();
-    t.area2c = cross;  // 2 A, times c_t below
-    mean_area += 0.5 * cross;
-  }
-  mean_area /= double(F.rows());
-
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(size_t(F.rows()) * 12);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    Triangle& t = triangles_[size_t(f)];
-    double c = 1.0;
-    if (options.weights == FlattenWeights::kPaper) {
-      const double h = (level(F(f, 0)) + level(F(f, 1)) + level(F(f, 2))) / 3.0;
-      c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
-    }
-    t.area2c *= c;
-    const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d a = s[(k + 1) % 3] - s[k], b = s[(k + 2) % 3] - s[k];
-      const double cot = a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
-      t.w(k) = c * cot;
-      const int i = F(f, (k + 1) % 3), j = F(f, (k + 2) % 3);
-      entries.emplace_back(i, i, t.w(k));
-      entries.emplace_back(j, j, t.w(k));
-      entries.emplace_back(i, j, -t.w(k));
-      entries.emplace_back(j, i, -t.w(k));
-    }
-  }
-  L_.resize(n, n);
-  L_.setFromTriplets(entries.begin(), entries.end());
+  assemble(V3, level);
 
   std::vector<char> fix_x(size_t(n), 0), fix_y(size_t(n), 0);
   for (size_t i = 0; i < size_t(n); ++i) {
@@ -132,8 +91,86 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   require(std::find(fix_x.begin(), fix_x.end(), 1) != fix_x.end() &&
               std::find(fix_y.begin(), fix_y.end(), 1) != fix_y.end(),
           "Flattener", "the boundary mode fixes no vertex: are the grid sides set?");
-  solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true);
-  if (fix_x != fix_y) solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y, true);
+  if (fix_x == fix_y) {
+    solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true);
+  } else {
+    parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true); },
+                    [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y, true); });
+  }
+}
+
+void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level) {
+  require(V3.rows() == rest_.rows(), "Flattener::reweight",
+          "the lifted mesh has " + std::to_string(V3.rows()) + " vertices, expected " +
+              std::to_string(rest_.rows()));
+  rest_ = V3.leftCols<2>();
+  assemble(V3, level);
+  if (solver_y_) {
+    parallel_invoke([&] { solver_x_->refactorize(L_); }, [&] { solver_y_->refactorize(L_); });
+  } else {
+    solver_x_->refactorize(L_);
+  }
+}
+
+void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level) {
+  const Eigen::Index n = V3.rows();
+  require(level.size() == n, "Flattener", "level must have one entry per vertex");
+  // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
+  triangles_.resize(size_t(F_.rows()));
+  double mean_area = 0;
+  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+    const Eigen::Vector3d e1 = V3.row(F_(f, 1)) - V3.row(F_(f, 0));
+    const Eigen::Vector3d e2 = V3.row(F_(f, 2)) - V3.row(F_(f, 0));
+    const double l1 = e1.norm(), cross = e1.cross(e2).norm();
+    require(l1 > 0 && cross > 0, "Flattener",
+            "triangle " + std::to_string(f) + " is degenerate in 3D");
+    Triangle& t = triangles_[size_t(f)];
+    t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
+    t.S_inv = t.S.inverse();
+    t.area2c = cross;  // 2 A, times c_t below
+    mean_area += 0.5 * cross;
+  }
+  mean_area /= double(F_.rows());
+
+  // L = sum over triangles and their edges (i, j) of w (e_i - e_j)(e_i - e_j)^T, entries in a
+  // fixed order so the values can be re-assembled into the same pattern.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(size_t(F_.rows()) * 12);
+  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+    Triangle& t = triangles_[size_t(f)];
+    double c = 1.0;
+    if (options_.weights == FlattenWeights::kPaper) {
+      const double h = (level(F_(f, 0)) + level(F_(f, 1)) + level(F_(f, 2))) / 3.0;
+      c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
+    }
+    t.area2c *= c;
+    const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = s[(k + 1) % 3] - s[k], b = s[(k + 2) % 3] - s[k];
+      const double cot = a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
+      t.w(k) = c * cot;
+      const int i = F_(f, (k + 1) % 3), j = F_(f, (k + 2) % 3);
+      entries.emplace_back(i, i, t.w(k));
+      entries.emplace_back(j, j, t.w(k));
+      entries.emplace_back(i, j, -t.w(k));
+      entries.emplace_back(j, i, -t.w(k));
+    }
+  }
+  if (L_.rows() != n) {
+    L_.resize(n, n);
+    L_.setFromTriplets(entries.begin(), entries.end());
+    entry_position_.resize(entries.size());
+    for (size_t e = 0; e < entries.size(); ++e) {
+      const int col = entries[e].col(), row = entries[e].row();
+      const int* begin = L_.innerIndexPtr() + L_.outerIndexPtr()[col];
+      const int* end = L_.innerIndexPtr() + L_.outerIndexPtr()[col + 1];
+      entry_position_[e] = int(std::lower_bound(begin, end, row) - L_.innerIndexPtr());
+    }
+  } else {
+    std::fill(L_.valuePtr(), L_.valuePtr() + L_.nonZeros(), 0.0);
+    for (size_t e = 0; e < entries.size(); ++e)
+      L_.valuePtr()[entry_position_[e]] += entries[e].value();
+  }
 }
 
 Flattener::~Flattener() = default;
@@ -146,13 +183,17 @@ Eigen::Matrix2d Flattener::jacobian(const Triangle& t, int f, const Eigen::Matri
 }
 
 Eigen::Matrix2d Flattener::target(const Eigen::Matrix2d& J) const {
-  const SignedSvd2 svd = signed_svd(J);
+  // With J = U diag(s1, s2) V^T (signed SVD), the closest rotation R = U V^T is [E -H; H E] / Q
+  // for E = (J00 + J11) / 2, H = (J10 - J01) / 2, Q = |(E, H)| = (s1 + s2) / 2 (svd2.cpp), so
+  // no SVD is needed: the paper's U diag(alpha (s - 1) + 1) V^T is (1 - alpha) R + alpha J, and
+  // the spectrum's target is ((1 - alpha) + alpha Q) R.
+  const double E = 0.5 * (J(0, 0) + J(1, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
+  const double Q = std::hypot(E, H);
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  if (Q > 0) R << E / Q, -H / Q, H / Q, E / Q;
   const double a = options_.alpha;
-  if (options_.metric == Metric::kPaper) {
-    return compose(svd, a * (svd.s1 - 1) + 1, a * (svd.s2 - 1) + 1);
-  }
-  const double b = (1 - a) + a * 0.5 * (svd.s1 + svd.s2);
-  return b * rotation(svd.rotation_angle());
+  if (options_.metric == Metric::kPaper) return (1 - a) * R + a * J;
+  return ((1 - a) + a * Q) * R;
 }
 
 double Flattener::energy(const Eigen::MatrixX2d& X) const {
@@ -204,15 +245,17 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
   r.X = X0;
   const Eigen::Index n = rest_.rows();
   std::vector<Eigen::Matrix2d> M(triangles_.size());
+  std::vector<double> triangle_energy(triangles_.size());
   auto local_step = [&]() {
-    double e = 0;
-    for (size_t f = 0; f < triangles_.size(); ++f) {
-      const Triangle& t = triangles_[f];
-      const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
-      M[f] = target(J);
-      e += t.area2c * (J - M[f]).squaredNorm();
-    }
-    return e;
+    parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        const Triangle& t = triangles_[f];
+        const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
+        M[f] = target(J);
+        triangle_energy[f] = t.area2c * (J - M[f]).squaredNorm();
+      }
+    });
+    return std::accumulate(triangle_energy.begin(), triangle_energy.end(), 0.0);
   };
   // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps X0's.
   const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? X0 : rest_;
@@ -239,8 +282,8 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
     }
     Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
-      next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0));
-      next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1));
+      parallel_invoke([&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
+                      [&] { next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1)); });
     } else {
       next = solver_x_->solve(b, fixed_values);
     }

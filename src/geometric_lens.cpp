@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -54,6 +55,35 @@ GeometricLens::GeometricLens(double width, double height, const LensOptions& opt
   grid_ = make_grid(width, height, options.mesh);
 }
 
+// The stages after the lift: texture coordinates (with the fold fallback), then the framing and
+// the zoom measured at each lens's peak once `r.flattening` is known.
+void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
+  std::vector<char> fixed(lifted.inside.size());
+  for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || r.mesh.sides[i] != 0;
+  r.warp.source = harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, options_.texture);
+  if (options_.texture == TextureWeights::kCotan && count_folds(r.warp.source, r.mesh.F) > 0) {
+    // Negative cotan weights folded the map (steep walls): redo it with non-negative weights.
+    r.warp.source =
+        harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, TextureWeights::kPositiveCotan);
+    r.texture_fallback = true;
+  }
+}
+
+void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted,
+                           LensResult& r) const {
+  r.lifted = lifted.V;
+  r.flat = r.flattening.X;
+  r.warp.F = r.mesh.F;
+  r.warp.screen = frame(r.flat, options_.flatten.boundary, width_, height_);
+  r.warp.screen_width = int(std::lround(width_));
+  r.warp.screen_height = int(std::lround(height_));
+  for (const Lens& lens : lenses) {
+    const double radius = std::max(grid_.cell, 0.05 * lens.region.size());
+    r.zoom_measured.push_back(magnification_at(r.warp, lens.region.peak(), radius));
+  }
+  r.solves = 1;
+}
+
 LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
                                              const std::vector<double>& heights) const {
   const auto start = Clock::now();
@@ -72,15 +102,7 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   r.timings.lift = ms_since(start);
 
   auto t = Clock::now();
-  std::vector<char> fixed(lifted.inside.size());
-  for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || r.mesh.sides[i] != 0;
-  r.warp.source = harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, options_.texture);
-  if (options_.texture == TextureWeights::kCotan && count_folds(r.warp.source, r.mesh.F) > 0) {
-    // Negative cotan weights folded the map (steep walls): redo it with non-negative weights.
-    r.warp.source =
-        harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, TextureWeights::kPositiveCotan);
-    r.texture_fallback = true;
-  }
+  texture(lifted, r);
   r.timings.texture = ms_since(t);
 
   t = Clock::now();
@@ -91,39 +113,88 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   r.flattening = flattener.solve(r.mesh.V);
   r.timings.iterate = ms_since(t);
 
-  r.lifted = lifted.V;
-  r.flat = r.flattening.X;
-  r.warp.F = r.mesh.F;
-  r.warp.screen = frame(r.flat, options_.flatten.boundary, width_, height_);
-  r.warp.screen_width = int(std::lround(width_));
-  r.warp.screen_height = int(std::lround(height_));
+  finish(lenses, lifted, r);
+  r.timings.total = ms_since(start);
+  return r;
+}
 
-  const TriangleDistortion measures = measure_triangles(r.warp);
-  for (const Lens& lens : lenses) {
-    const double radius = std::max(grid_.cell, 0.05 * lens.region.size());
-    r.zoom_measured.push_back(magnification_at(r.warp, measures, lens.region.peak(), radius));
+// The interactive path: the base grid (no subdivision, so the topology and the symbolic
+// factorization stay), the flattener refitted numerically, and the previous flattening as the
+// starting point.
+LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
+                                       const std::vector<double>& heights) {
+  const auto start = Clock::now();
+  LensResult r;
+  r.heights = heights;
+  r.mesh = grid_;
+  const Lifted lifted = lift(r.mesh.V, lenses, heights);
+  r.timings.lift = ms_since(start);
+
+  auto t = Clock::now();
+  texture(lifted, r);
+  r.timings.texture = ms_since(t);
+
+  t = Clock::now();
+  if (cache_.flattener) {
+    cache_.flattener->reweight(lifted.V, lifted.level);
+  } else {
+    cache_.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
+                                                   options_.flatten);
+    cache_.flat = grid_.V;
   }
-  r.solves = 1;
+  r.timings.factorize = ms_since(t);
+
+  t = Clock::now();
+  r.flattening = cache_.flattener->solve(cache_.flat);
+  cache_.flat = r.flattening.X;
+  r.timings.iterate = ms_since(t);
+
+  finish(lenses, lifted, r);
   r.timings.total = ms_since(start);
   return r;
 }
 
 LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
+  std::vector<double> h;
+  for (const Lens& lens : lenses) h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens));
+  return calibrate(lenses, h, [&](const std::vector<double>& heights) {
+    return solve_with_heights(lenses, heights);
+  });
+}
+
+const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
+  // Start from the heights found last time for a lens of the same shape, size and zoom: after a
+  // move, one solve usually confirms them.
+  std::vector<double> h;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    const Lens& lens = lenses[k];
+    const bool known = k < cache_.lenses.size() && cache_.lenses[k].zoom == lens.zoom &&
+                       cache_.lenses[k].profile == lens.profile &&
+                       cache_.lenses[k].region.kind() == lens.region.kind() &&
+                       cache_.lenses[k].region.size() == lens.region.size();
+    h.push_back(lens.zoom == 1 ? 0.0 : known ? cache_.result.heights[k] : initial_height(lens));
+  }
+  cache_.result = calibrate(
+      lenses, h, [&](const std::vector<double>& heights) { return solve_cached(lenses, heights); });
+  cache_.lenses = lenses;
+  return cache_.result;
+}
+
+LensResult GeometricLens::calibrate(
+    const std::vector<Lens>& lenses, std::vector<double> h,
+    const std::function<LensResult(const std::vector<double>&)>& run) const {
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   const size_t n = lenses.size();
   // Per lens, a bracket [lo, hi] of heights on f(h) = log(zoom(h)) - log(target), f(0) < 0,
   // refined by false position (Illinois variant: an end kept twice has its f halved).
-  std::vector<double> h(n), lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
+  std::vector<double> lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
   std::vector<int> last_side(n, 0);
-  for (size_t k = 0; k < n; ++k) {
-    f_lo[k] = -std::log(lenses[k].zoom);
-    h[k] = lenses[k].zoom == 1 ? 0.0 : initial_height(lenses[k]);
-  }
+  for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
   StageTimings sum;
   LensResult best;
   double best_miss = std::numeric_limits<double>::infinity();
   for (int solve = 1;; ++solve) {
-    LensResult r = solve_with_heights(lenses, h);
+    LensResult r = run(h);
     sum.lift += r.timings.lift;
     sum.texture += r.timings.texture;
     sum.factorize += r.timings.factorize;

@@ -1,5 +1,6 @@
 #include "geolens/sparse_solver.h"
 
+#include <algorithm>
 #include <string>
 
 #include "geolens/errors.h"
@@ -55,6 +56,27 @@ void DirichletSolver::split(const SpMat& A) {
   A_ff_.setFromTriplets(ff.begin(), ff.end());
   A_fc_.resize(nf, A.cols());
   A_fc_.setFromTriplets(fc.begin(), fc.end());
+  // Where each stored entry of A lands, so refactorize() only copies values.
+  auto position = [](const SpMat& M, int row, int col) {
+    const int* begin = M.innerIndexPtr() + M.outerIndexPtr()[col];
+    const int* end = M.innerIndexPtr() + M.outerIndexPtr()[col + 1];
+    return int(std::lower_bound(begin, end, row) - M.innerIndexPtr());
+  };
+  destination_.clear();
+  destination_.reserve(size_t(A.nonZeros()));
+  for (int col = 0; col < A.outerSize(); ++col) {
+    for (SpMat::InnerIterator it(A, col); it; ++it) {
+      const int r = reduced_[size_t(it.row())], c = reduced_[size_t(it.col())];
+      if (r < 0) {
+        destination_.push_back(kDropped);
+      } else if (c >= 0) {
+        destination_.push_back(position(A_ff_, r, c));
+      } else {
+        destination_.push_back(~position(A_fc_, r, int(it.col())));
+      }
+    }
+  }
+  pattern_size_ = A.nonZeros();
 }
 
 void DirichletSolver::factorize() {
@@ -73,9 +95,19 @@ void DirichletSolver::factorize() {
 }
 
 void DirichletSolver::refactorize(const SpMat& A) {
-  require(size_t(A.rows()) == reduced_.size() && A.cols() == A.rows(),
-          "DirichletSolver::refactorize", "matrix size changed");
-  split(A);
+  require(
+      size_t(A.rows()) == reduced_.size() && A.cols() == A.rows() && A.nonZeros() == pattern_size_,
+      "DirichletSolver::refactorize", "the matrix must keep its size and sparsity pattern");
+  const double* values = A.valuePtr();
+  for (size_t k = 0; k < destination_.size(); ++k) {
+    const int d = destination_[k];
+    if (d == kDropped) continue;
+    if (d >= 0) {
+      A_ff_.valuePtr()[d] = values[k];
+    } else {
+      A_fc_.valuePtr()[~d] = values[k];
+    }
+  }
   factorize();
 }
 

@@ -74,7 +74,12 @@ Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::Matri
                                   TextureWeights weights) {
   require(uv.rows() == V3.rows() && fixed.size() == size_t(V3.rows()), "harmonic_texture",
           "uv and fixed flags must have one row per vertex");
-  const Eigen::SparseMatrix<double> W = harmonic_weights(V3, F, weights);
+  // Only the rows of free vertices matter: weigh the triangles that touch one.
+  std::vector<Eigen::Index> touching;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    if (!fixed[size_t(F(f, 0))] || !fixed[size_t(F(f, 1))] || !fixed[size_t(F(f, 2))])
+      touching.push_back(f);
+  const Eigen::SparseMatrix<double> W = harmonic_weights(V3, F(touching, Eigen::all), weights);
   // A = D - W with D the row sums: A u = 0 on free rows is sum_j w_ij (u_i - u_j) = 0.
   const Eigen::VectorXd degree = W * Eigen::VectorXd::Ones(W.cols());
   Eigen::SparseMatrix<double> D(W.rows(), W.cols());

@@ -26,6 +26,9 @@ TriangleDistortion measure_triangles(const WarpMesh& mesh);
 double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures,
                         const Eigen::Vector2d& point, double radius);
 
+/// The same, measuring only the triangles it needs (for interactive use).
+double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, double radius);
+
 struct DistortionSummary {
   double conformal_mean = 0;  ///< source-area-weighted mean of s1 / s2 - 1
   double conformal_max = 0;

@@ -92,6 +92,13 @@ class Flattener {
             const std::vector<uint8_t>& sides, const FlattenOptions& options);
   ~Flattener();
 
+  /// Refits the flattener to a new lift of the same mesh (same faces, sides, options): the
+  /// standard triangles and weights are recomputed and the factorizations redone numerically on
+  /// the kept symbolic analysis. For a lens that moved.
+  /// @param V3     #V x 3 lifted vertices, pixels (x, y also become the fixed values)
+  /// @param level  #V normalized heights in [0, 1]
+  void reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level);
+
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
   FlattenResult solve(const Eigen::MatrixX2d& X0) const;
@@ -109,6 +116,7 @@ class Flattener {
     double area2c;          // 2 A_t c_t: the triangle's weight in ||J - M||_F^2
     Eigen::Vector3d w;      // w for the edge opposite each corner
   };
+  void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level);
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
   // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
@@ -119,6 +127,7 @@ class Flattener {
   FlattenOptions options_;
   std::vector<Triangle> triangles_;
   Eigen::SparseMatrix<double> L_;
+  std::vector<int> entry_position_;  // value index in L_ of each assembled entry
   // One solver for both coordinates, or (sliding) one per coordinate.
   std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
 };

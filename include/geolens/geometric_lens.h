@@ -2,6 +2,8 @@
 // The geometric lens: grid -> lift -> harmonic texture -> local/global flattening -> frame.
 
 #include <Eigen/Core>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "geolens/flatten.h"
@@ -46,9 +48,10 @@ struct LensResult {
   StageTimings timings;
 };
 
-/// Magnifies lenses on a width x height image. Holds the grid; every call to solve() is
-/// independent (no state carries over between calls), so one object serves many lens
-/// placements on the same image.
+/// Magnifies lenses on a width x height image. Holds the grid. solve() is independent of any
+/// earlier call; update() is the interactive path a GUI loop calls every frame: it keeps the
+/// flattener's symbolic factorization, starts from the previous frame's flattening and heights,
+/// and skips subdivision so the mesh topology stays fixed.
 class GeometricLens {
  public:
   GeometricLens(double width, double height, const LensOptions& options = {});
@@ -57,6 +60,11 @@ class GeometricLens {
   /// height 0, the identity), and returns the final warp. Throws InvalidInput for an invalid
   /// lens, SolverError if a system cannot be solved.
   LensResult solve(const std::vector<Lens>& lenses) const;
+
+  /// Like solve() for lenses that moved or changed since the last update(), reusing what did not
+  /// change (see the class comment); the result stays valid until the next update(). Its zoom
+  /// and convergence are checked as in solve(); its mesh is the base grid.
+  const LensResult& update(const std::vector<Lens>& lenses);
 
   /// One solve with given peak heights (pixels), no calibration; fills `zoom_measured`.
   LensResult solve_with_heights(const std::vector<Lens>& lenses,
@@ -67,9 +75,21 @@ class GeometricLens {
   double height() const { return height_; }
 
  private:
+  void texture(const Lifted& lifted, LensResult& r) const;
+  void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
+  LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
+  LensResult calibrate(const std::vector<Lens>& lenses, std::vector<double> heights,
+                       const std::function<LensResult(const std::vector<double>&)>& run) const;
+
   double width_, height_;
   LensOptions options_;
   Grid grid_;
+  struct Cache {
+    std::unique_ptr<Flattener> flattener;
+    Eigen::MatrixX2d flat;  // the last flattening, the next update's starting point
+    std::vector<Lens> lenses;
+    LensResult result;
+  } cache_;
 };
 
 }  // namespace geolens

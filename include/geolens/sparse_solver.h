@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -28,7 +29,9 @@ class DirichletSolver {
   DirichletSolver(DirichletSolver&&) noexcept;
   DirichletSolver& operator=(DirichletSolver&&) noexcept;
 
-  /// New values for A on the same sparsity pattern and the same fixed set.
+  /// New values for A on the same sparsity pattern (same stored entries, in the same order) and
+  /// the same fixed set: the values are copied into place and only the numeric factorization is
+  /// redone. Throws InvalidInput if the pattern differs, SolverError as the constructor.
   void refactorize(const Eigen::SparseMatrix<double>& A);
 
   /// @param b        n x k right-hand sides (rows of fixed entries ignored)
@@ -47,6 +50,11 @@ class DirichletSolver {
   std::vector<int> reduced_;          // full index -> reduced index, or -1 if fixed
   Eigen::SparseMatrix<double> A_ff_;  // free x free block
   Eigen::SparseMatrix<double> A_fc_;  // free x all, fixed columns only
+  // Per stored entry of A: its index in A_ff_'s values (>= 0), ~index in A_fc_'s (< 0 but not
+  // kDropped), or kDropped for rows of fixed entries.
+  static constexpr int kDropped = std::numeric_limits<int>::min();
+  std::vector<int> destination_;
+  Eigen::Index pattern_size_ = 0;
   std::unique_ptr<Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>> llt_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
 };
