@@ -129,3 +129,26 @@ BENCHMARK(BM_UpdateFirst)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Local extent: a r = 200 px zoom-2 lens dragged 3 px per frame on a very large image; the
+// argument is the image side. The cost should not depend on it.
+void BM_LocalUpdateMoved(benchmark::State& state) {
+  const double side = double(state.range(0));
+  LensOptions o;
+  o.extent = Extent::kLocal;
+  GeometricLens lens(side, side, o);
+  double x = side / 2;
+  lens.update({Lens{Region::circle({x, side / 2}, 200)}});
+  for (auto _ : state) {
+    x += 3;
+    benchmark::DoNotOptimize(lens.update({Lens{Region::circle({x, side / 2}, 200)}}));
+  }
+}
+
+BENCHMARK(BM_LocalUpdateMoved)->Arg(4096)->Arg(16384)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace geolens

@@ -1,10 +1,12 @@
 #include "geolens/geometric_lens.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
@@ -37,9 +39,69 @@ Eigen::MatrixX2d frame(const Eigen::MatrixX2d& X, Boundary boundary, double widt
   return ((X.rowwise() - lo.transpose()) * scale).rowwise() + offset;
 }
 
+// Triangulates the image rectangle outside the local patch `box` (whose border vertices are those
+// of `mesh` with non-zero sides) as the identity, conforming to the patch border: four
+// trapezoids, each fanned from its two outer corners. Appends to `warp`.
+void add_identity_frame(WarpMesh& warp, const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
+                        double width, double height) {
+  const Eigen::Vector2d lo = box.min(), hi = box.max();
+  // Border vertices of the patch per side, in counter-clockwise order of the ring.
+  const Eigen::Index first = warp.source.rows();
+  const Eigen::Vector2d corner[4] = {{0, 0}, {width, 0}, {width, height}, {0, height}};
+  warp.source.conservativeResize(first + 4, 2);
+  warp.screen.conservativeResize(first + 4, 2);
+  for (int k = 0; k < 4; ++k) {
+    warp.source.row(first + k) = corner[k].transpose();
+    warp.screen.row(first + k) = corner[k].transpose();
+  }
+  std::vector<Eigen::RowVector3i> faces;
+  // Side k runs from patch corner k to k + 1 (top: left to right, right: top to bottom, ...),
+  // facing image corners k and k + 1.
+  const Eigen::Vector2d patch_corner[4] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d a = patch_corner[k], b = patch_corner[(k + 1) % 4];
+    const Eigen::Vector2d direction = (b - a).normalized();
+    // The trapezoid is empty where the patch touches the image side.
+    const Eigen::Vector2d outward(direction.y(), -direction.x());
+    if (std::abs((corner[k] - a).dot(outward)) < 1e-9) continue;
+    std::vector<std::pair<double, int>> side;
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+      if (mesh.sides[size_t(i)] == 0) continue;
+      const Eigen::Vector2d p = mesh.V.row(i);
+      const Eigen::Vector2d d = p - a;
+      if (std::abs(d.dot(outward)) < 1e-9 && d.dot(direction) > -1e-9 &&
+          d.dot(direction) < (b - a).norm() + 1e-9)
+        side.emplace_back(d.dot(direction), int(i));
+    }
+    std::sort(side.begin(), side.end());
+    const int ca = int(first) + k, cb = int(first) + (k + 1) % 4;
+    const size_t middle = side.size() / 2;
+    // With y down, image corner -> patch side -> ... is oriented like the grid's triangles
+    // when the patch side is walked from b back to a.
+    for (size_t i = 0; i + 1 < side.size(); ++i) {
+      const int apex = i < middle ? ca : cb;
+      faces.emplace_back(apex, side[i + 1].second, side[i].second);
+    }
+    faces.emplace_back(ca, cb, side[middle].second);
+  }
+  const Eigen::Index old = warp.F.rows();
+  warp.F.conservativeResize(old + Eigen::Index(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) warp.F.row(old + Eigen::Index(f)) = faces[f];
+}
+
 }  // namespace
 
+Extent parse_extent(const std::string& name) {
+  if (name == "global") return Extent::kGlobal;
+  if (name == "local") return Extent::kLocal;
+  throw InvalidInput("parse_extent: unknown extent '" + name + "' (expected global or local)");
+}
+
+std::string to_string(Extent extent) { return extent == Extent::kGlobal ? "global" : "local"; }
+
 void validate(const LensOptions& o) {
+  require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
+          "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
   require(o.mesh >= 4 && o.mesh <= 1000, "validate",
           "mesh must be in [4, 1000] vertices per side, got " + std::to_string(o.mesh));
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
@@ -53,6 +115,33 @@ GeometricLens::GeometricLens(double width, double height, const LensOptions& opt
     : width_(width), height_(height), options_(options) {
   validate(options);
   grid_ = make_grid(width, height, options.mesh);
+}
+
+// The grid the lift is built on: the image's, or a local patch around the lenses whose border
+// carries the sides flags so the flattening pins it.
+Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const {
+  const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
+  if (options_.extent == Extent::kGlobal || lenses.empty()) {
+    box = image;
+    return grid_;
+  }
+  box.setEmpty();
+  for (const Lens& lens : lenses) {
+    const Eigen::Vector2d centre = lens.region.bounds().center();
+    const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() +
+                                 (options_.extent_factor - 1) * lens.region.size();
+    box.extend(centre - half).extend(centre + half);
+  }
+  box = box.intersection(image);
+  Grid patch = make_grid(box.sizes().x(), box.sizes().y(), options_.mesh);
+  patch.V.rowwise() += box.min().transpose();
+  return patch;
+}
+
+FlattenOptions GeometricLens::flatten_options() const {
+  FlattenOptions o = options_.flatten;
+  if (options_.extent == Extent::kLocal) o.boundary = Boundary::kFixed;
+  return o;
 }
 
 // The stages after the lift: texture coordinates (with the fold fallback), then the framing and
@@ -74,11 +163,13 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
   r.lifted = lifted.V;
   r.flat = r.flattening.X;
   r.warp.F = r.mesh.F;
-  r.warp.screen = frame(r.flat, options_.flatten.boundary, width_, height_);
+  r.warp.screen = frame(r.flat, flatten_options().boundary, width_, height_);
   r.warp.screen_width = int(std::lround(width_));
   r.warp.screen_height = int(std::lround(height_));
+  if (options_.extent == Extent::kLocal) add_identity_frame(r.warp, r.mesh, r.box, width_, height_);
+  const double cell = r.box.sizes().maxCoeff() / (options_.mesh - 1);
   for (const Lens& lens : lenses) {
-    const double radius = std::max(grid_.cell, 0.05 * lens.region.size());
+    const double radius = std::max(cell, 0.05 * lens.region.size());
     r.zoom_measured.push_back(magnification_at(r.warp, lens.region.peak(), radius));
   }
   r.solves = 1;
@@ -90,7 +181,7 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   LensResult r;
   r.heights = heights;
   r.mesh = subdivide(
-      grid_,
+      base_grid(lenses, r.box),
       [&](const Eigen::Vector2d& p) {
         double z = 0;
         for (size_t k = 0; k < lenses.size(); ++k)
@@ -106,7 +197,7 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   r.timings.texture = ms_since(t);
 
   t = Clock::now();
-  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, options_.flatten);
+  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options());
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
@@ -126,7 +217,7 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   const auto start = Clock::now();
   LensResult r;
   r.heights = heights;
-  r.mesh = grid_;
+  r.mesh = base_grid(lenses, r.box);
   const Lifted lifted = lift(r.mesh.V, lenses, heights);
   r.timings.lift = ms_since(start);
 
@@ -135,13 +226,18 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   r.timings.texture = ms_since(t);
 
   t = Clock::now();
-  if (cache_.flattener) {
+  // A local patch has the same topology wherever it is, as long as its size is unchanged.
+  const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
+                             (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9;
+  if (same_topology) {
     cache_.flattener->reweight(lifted.V, lifted.level);
+    cache_.flat.rowwise() += (r.box.min() - cache_.box.min()).transpose();
   } else {
     cache_.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                                                   options_.flatten);
-    cache_.flat = grid_.V;
+                                                   flatten_options());
+    cache_.flat = r.mesh.V;
   }
+  cache_.box = r.box;
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();

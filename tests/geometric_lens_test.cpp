@@ -114,3 +114,37 @@ TEST(GeometricLens, UpdateMatchesTheExactSolveWhileTheLensMoves) {
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Local extent: the patch around the lens is solved, the rest of the image is the identity, and
+// the warp still covers the image exactly once.
+TEST(GeometricLens, LocalExtentSolvesAPatchAndLeavesTheRestAlone) {
+  LensOptions options;
+  options.mesh = 50;
+  options.extent = Extent::kLocal;
+  options.extent_factor = 2.0;
+  const GeometricLens lens(2000, 1500, options);
+  const LensResult r = lens.solve({Lens{Region::circle({700, 600}, 100), 2.0}});
+  EXPECT_NEAR(r.zoom_measured[0], 2.0, 0.1);
+  EXPECT_TRUE(
+      r.box.isApprox(Eigen::AlignedBox2d(Eigen::Vector2d(500, 400), Eigen::Vector2d(900, 800))));
+  const TriangleDistortion d = measure_triangles(r.warp);
+  EXPECT_EQ(summarize(d).flipped, 0);
+  EXPECT_NEAR(d.source_area.sum(), 2000.0 * 1500.0, 1e-6);
+  // Vertices on and outside the patch border keep their place.
+  for (Eigen::Index i = 0; i < r.warp.source.rows(); ++i) {
+    const Eigen::Vector2d p = r.warp.source.row(i);
+    if (!r.box.contains(p) || i >= r.mesh.V.rows() || r.mesh.sides[size_t(i)] != 0)
+      EXPECT_LT((r.warp.screen.row(i) - r.warp.source.row(i)).norm(), 1e-9) << i;
+  }
+  // A lens near the image corner clips the patch; the frame skips the empty trapezoids.
+  const LensResult corner = lens.solve({Lens{Region::circle({120, 100}, 90), 2.0}});
+  const TriangleDistortion dc = measure_triangles(corner.warp);
+  EXPECT_EQ(summarize(dc).flipped, 0);
+  EXPECT_NEAR(dc.source_area.sum(), 2000.0 * 1500.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace geolens

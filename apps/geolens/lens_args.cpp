@@ -67,6 +67,12 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
   c.add_option("--texture", a.texture, "texture map weights: cotan or mvc")->capture_default_str();
   c.add_option("--boundary", a.boundary, "image border: sliding, fixed or free")
       ->capture_default_str();
+  c.add_option("--extent", a.extent,
+               "global (the whole image gives way) or local (a patch around the lenses)")
+      ->capture_default_str();
+  c.add_option("--extent-factor", a.extent_factor,
+               "local patch half-side over the lens radius, in (1, 100]")
+      ->capture_default_str();
   c.add_option("--tolerance", a.tolerance, "relative energy change that stops iterating")
       ->capture_default_str();
   c.add_option("--max-iterations", a.max_iterations, "cap on flattening iterations")
@@ -77,6 +83,8 @@ LensOptions parse_options(const LensArgs& a) {
   LensOptions options;
   options.mesh = a.mesh;
   options.subdivision.max_levels = a.subdivide;
+  options.extent = parse_extent(a.extent);
+  options.extent_factor = a.extent_factor;
   options.texture = parse_texture_weights(a.texture);
   options.flatten.weights = parse_flatten_weights(a.weights);
   options.flatten.metric = parse_metric(a.metric);

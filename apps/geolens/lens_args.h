@@ -15,14 +15,15 @@ struct LensArgs {
   std::vector<std::string> lenses;
   double zoom = 2.0;
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
-              boundary = "sliding";
-  double alpha = 0.0, tolerance = 1e-3;
+              boundary = "sliding", extent = "global";
+  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5;
   int mesh = 100, max_iterations = 100, subdivide = 2;
 };
 
 /// Registers --lens (required), --zoom, --profile, --mesh, --subdivide, --metric, --alpha,
 /// --weights,
-/// --texture, --boundary, --tolerance and --max-iterations on `command`.
+/// --texture, --boundary, --extent, --extent-factor, --tolerance and --max-iterations on
+/// `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
 
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.

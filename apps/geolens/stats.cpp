@@ -17,6 +17,8 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
   stats["flipped"] = summary.flipped;
   stats["options"] = {{"mesh", options.mesh},
                       {"subdivide", options.subdivision.max_levels},
+                      {"extent", to_string(options.extent)},
+                      {"extent_factor", options.extent_factor},
                       {"texture", to_string(options.texture)},
                       {"weights", to_string(options.flatten.weights)},
                       {"metric", to_string(options.flatten.metric)},

@@ -2,8 +2,10 @@
 // The geometric lens: grid -> lift -> harmonic texture -> local/global flattening -> frame.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "geolens/flatten.h"
@@ -15,8 +17,21 @@
 
 namespace geolens {
 
+/// Which part of the image takes part in the solve.
+enum class Extent {
+  kGlobal,  ///< the whole image: the context everywhere gives way to the lens
+  /// a square patch of side 2 * extent_factor * size around the lenses (clipped to the image),
+  /// its border pinned; the rest of the image is the identity. The patch grid has `mesh`
+  /// vertices along its long side whatever the image size, so the cost depends on the lens.
+  kLocal,
+};
+Extent parse_extent(const std::string& name);  ///< "global" | "local"
+std::string to_string(Extent extent);
+
 struct LensOptions {
-  int mesh = 100;  ///< grid vertices along the image's long side, in [4, 1000]
+  int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
+  Extent extent = Extent::kGlobal;
+  double extent_factor = 2.5;  ///< local patch half-side over the lens size (radius), > 1
   TextureWeights texture = TextureWeights::kCotan;
   SubdivisionOptions subdivision;
   FlattenOptions flatten;
@@ -37,6 +52,7 @@ struct StageTimings {
 struct LensResult {
   WarpMesh warp;                      ///< source = texture coordinates, screen = framed flattening
   PlanarMesh mesh;                    ///< the (subdivided) planar mesh the lift was built on
+  Eigen::AlignedBox2d box;            ///< the solved area: the image, or the local patch
   Eigen::MatrixX3d lifted;            ///< #V x 3 the lifted mesh of the final solve, pixels
   Eigen::MatrixX2d flat;              ///< #V x 2 the flattening before framing, pixels
   FlattenResult flattening;           ///< iterations and energies of the final solve
@@ -70,11 +86,14 @@ class GeometricLens {
   LensResult solve_with_heights(const std::vector<Lens>& lenses,
                                 const std::vector<double>& heights) const;
 
+  /// The grid of the whole image (global extent).
   const Grid& grid() const { return grid_; }
   double width() const { return width_; }
   double height() const { return height_; }
 
  private:
+  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
+  FlattenOptions flatten_options() const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
   LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
@@ -86,7 +105,8 @@ class GeometricLens {
   Grid grid_;
   struct Cache {
     std::unique_ptr<Flattener> flattener;
-    Eigen::MatrixX2d flat;  // the last flattening, the next update's starting point
+    Eigen::MatrixX2d flat;    // the last flattening, the next update's starting point
+    Eigen::AlignedBox2d box;  // the area it covers
     std::vector<Lens> lenses;
     LensResult result;
   } cache_;
