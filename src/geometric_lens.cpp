@@ -16,6 +16,7 @@ namespace geolens {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kMaxHeightOverSize = 20.0;
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -324,6 +325,8 @@ LensResult GeometricLens::calibrate(
       } else {
         h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
       }
+      // Taller bumps only fold: a lens that has not reached its zoom at 20 sizes never will.
+      h[k] = std::min(h[k], kMaxHeightOverSize * lenses[k].region.size());
     }
     if (miss < best_miss) {
       best_miss = miss;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geolens/errors.h"
+#include "geolens/polygon.h"
 
 namespace geolens::cli {
 
@@ -26,9 +27,9 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-const char* kLensSyntax = "expected circle:CX,CY,R[:ZOOM]";
+const char* kLensSyntax = "expected circle:CX,CY,R[:ZOOM], polygon:FILE[:ZOOM] or mask:FILE[:ZOOM]";
 
-std::vector<Region> parse_regions(const std::string& spec, std::string& zoom) {
+std::vector<Region> parse_regions(const std::string& spec, std::string& zoom, const Image& source) {
   const std::vector<std::string> parts = split(spec, ':');
   require(parts.size() >= 2 && parts.size() <= 3, "--lens",
           std::string(kLensSyntax) + ", got '" + spec + "'");
@@ -42,6 +43,19 @@ std::vector<Region> parse_regions(const std::string& spec, std::string& zoom) {
     return {Region::circle(
         {parse_number(numbers[0], "centre x"), parse_number(numbers[1], "centre y")}, radius)};
   }
+  if (parts[0] == "polygon") {
+    const std::vector<Eigen::Vector2d> vertices = read_polygon_file(parts[1]);
+    validate_polygon(vertices, "--lens");
+    return {Region::polygon(vertices)};
+  }
+  if (parts[0] == "mask") {
+    const Image mask = load_image(parts[1]);
+    require(mask.width == source.width && mask.height == source.height, "--lens",
+            "mask '" + parts[1] + "' is " + std::to_string(mask.width) + "x" +
+                std::to_string(mask.height) + " but the image is " + std::to_string(source.width) +
+                "x" + std::to_string(source.height));
+    return Region::from_mask(mask);
+  }
   throw InvalidInput("--lens: " + std::string(kLensSyntax) + ", got '" + spec + "'");
 }
 
@@ -49,7 +63,8 @@ std::vector<Region> parse_regions(const std::string& spec, std::string& zoom) {
 
 void add_lens_options(CLI::App& c, LensArgs& a) {
   c.add_option("--lens", a.lenses,
-               "circle:CX,CY,R[:ZOOM] in source pixels; repeat for several lenses")
+               "circle:CX,CY,R[:ZOOM] (source pixels), polygon:FILE[:ZOOM] (one 'x y' per line) "
+               "or mask:FILE[:ZOOM] (non-zero = inside, each blob a lens); repeatable")
       ->required();
   c.add_option("--zoom", a.zoom, "zoom of lenses that give none, in [1, 8]")->capture_default_str();
   c.add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
@@ -104,7 +119,7 @@ std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
   std::vector<Lens> lenses;
   for (const std::string& spec : a.lenses) {
     std::string zoom_text;
-    for (Region& region : parse_regions(spec, zoom_text)) {
+    for (Region& region : parse_regions(spec, zoom_text, source)) {
       const double zoom = zoom_text.empty() ? a.zoom : parse_number(zoom_text, "zoom");
       lenses.push_back(Lens{std::move(region), zoom, profile});
       validate_lens(lenses.back(), source.width, source.height);

@@ -17,7 +17,7 @@ struct LensArgs {
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
               boundary = "sliding", extent = "global";
   double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5;
-  int mesh = 100, max_iterations = 100, subdivide = 2;
+  int mesh = 100, max_iterations = 100, subdivide = 0;
 };
 
 /// Registers --lens (required), --zoom, --profile, --mesh, --subdivide, --metric, --alpha,
@@ -29,7 +29,9 @@ void add_lens_options(CLI::App& command, LensArgs& args);
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.
 LensOptions parse_options(const LensArgs& args);
 
-/// The lenses, validated against `source`: `circle:CX,CY,R[:ZOOM]` (source pixels).
+/// The lenses, validated against `source`: `circle:CX,CY,R[:ZOOM]` (source pixels),
+/// `polygon:FILE[:ZOOM]`, `mask:FILE[:ZOOM]` (a PNG of the source's size; each 8-connected blob
+/// of non-zero pixels is one lens).
 /// Throws InvalidInput naming the offending --lens value.
 std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
 

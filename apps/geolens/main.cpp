@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "compare.h"
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
 #include "geolens/geometric_lens.h"
@@ -149,8 +150,8 @@ int run_magnify(const MagnifyArgs& a) {
     save_image(a.before_after, before_after(before, output));
   }
   if (!a.export_mesh.empty()) {
-    write_obj(a.export_mesh + "_3d.obj", result.lifted, result.warp.F);
-    write_obj(a.export_mesh + "_flat.obj", result.flat, result.warp.F);
+    write_obj(a.export_mesh + "_3d.obj", result.lifted, result.mesh.F);
+    write_obj(a.export_mesh + "_flat.obj", result.flat, result.mesh.F);
   }
   if (!a.stats.empty()) {
     const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -184,6 +185,8 @@ int main(int argc, char** argv) {
                       "write PREFIX_3d.obj (lifted) and PREFIX_flat.obj (flattened)");
   magnify->add_option("--before-after", a.before_after,
                       "write the input (lenses outlined) and the output side by side");
+  CompareArgs compare_args;
+  CLI::App* compare = add_compare_command(app, compare_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -198,6 +201,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (magnify->parsed()) return run_magnify(a);
+    if (compare->parsed()) return run_compare(compare_args);
   } catch (const InvalidInput& e) {
     std::cerr << "geolens: error: " << e.what() << '\n';
     return 2;

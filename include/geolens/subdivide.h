@@ -14,7 +14,7 @@ struct SubdivisionOptions {
   /// A triangle whose smallest lifted angle is below this (degrees) has its longest lifted edge
   /// split (shear).
   double min_angle = 12.0;
-  int max_levels = 2;  ///< bisection rounds, >= 0 (0 = no subdivision); two halve an edge
+  int max_levels = 0;  ///< bisection rounds, >= 0 (0 = no subdivision); two halve an edge
 };
 
 /// Throws InvalidInput unless max_stretch > 1, min_angle in [0, 60) and max_levels in [0, 8].

@@ -1,0 +1,391 @@
+#include "compare.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geolens/baselines.h"
+#include "geolens/distortion.h"
+#include "geolens/distortion_regions.h"
+#include "geolens/errors.h"
+#include "geolens/geometric_lens.h"
+#include "geolens/heatmap.h"
+#include "geolens/image.h"
+#include "geolens/render.h"
+
+namespace geolens {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Method {
+  std::string name;
+  WarpMesh warp;
+  double zoom_center = 0;  // magnification_at the first lens's centre
+  TriangleDistortion measures;
+  RegionStatistics regions;
+};
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  if (fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
+  return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+}
+
+// Writes `text` to a temporary file next to `path` and renames it into place.
+void write_text(const fs::path& path, const std::string& text) {
+  const fs::path temporary = path.string() + ".tmp-" + std::to_string(getpid());
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out.flush()) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw IoError("compare: cannot write '" + path.string() + "'");
+    }
+  }
+  fs::rename(temporary, path);
+}
+
+std::string fixed(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+// `warp` with its screen translated and scaled so that the square window at `origin` with side
+// `side` (screen pixels) fills a tile x tile picture.
+WarpMesh framed(const WarpMesh& warp, const Eigen::Vector2d& origin, double side, int tile) {
+  WarpMesh out = warp;
+  out.screen = (warp.screen.rowwise() - origin.transpose()) * (tile / side);
+  out.screen_width = out.screen_height = tile;
+  return out;
+}
+
+void outline_circle(Image& image, const Eigen::Vector2d& center, double radius) {
+  const int steps = int(4 * std::numbers::pi * radius) + 16;
+  for (int s = 0; s < steps; ++s) {
+    const double angle = 2 * std::numbers::pi * s / steps;
+    for (double dr : {-0.5, 0.5}) {
+      const int x = int(std::floor(center.x() + (radius + dr) * std::cos(angle)));
+      const int y = int(std::floor(center.y() + (radius + dr) * std::sin(angle)));
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      uint8_t* p = image.at(x, y);
+      p[0] = 220;
+      p[1] = 30;
+      p[2] = 30;
+    }
+  }
+}
+
+Image to_rgb(const Image& image) {
+  if (image.channels == 3) return image;
+  Image out(image.width, image.height, 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const uint8_t* p = image.at(x, y);
+      for (int c = 0; c < 3; ++c) out.at(x, y)[c] = image.channels < 3 ? p[0] : p[c];
+    }
+  return out;
+}
+
+void paste(Image& target, const Image& tile, int left, int top) {
+  for (int y = 0; y < tile.height; ++y)
+    std::copy_n(tile.at(0, y), size_t(tile.width) * 3, target.at(left, top + y));
+}
+
+// Input, then every method: a cell each (four label lines, the output, its heatmap), four cells
+// per row, the colour scale below. Every picture shows the same square around the lenses.
+Image make_panel(const Image& source, const MipPyramid& pyramid, const std::vector<Method>& methods,
+                 const std::vector<CircleLens>& lenses, double heat_max, int tile) {
+  Eigen::AlignedBox2d box;
+  for (const CircleLens& lens : lenses) {
+    box.extend(lens.center - Eigen::Vector2d::Constant(lens.radius));
+    box.extend(lens.center + Eigen::Vector2d::Constant(lens.radius));
+  }
+  const double side = 1.3 * box.sizes().maxCoeff();
+  const Eigen::Vector2d origin = box.center() - Eigen::Vector2d::Constant(side / 2);
+  // Labels at twice the font size when the longest method name (158 pixels) fits the tile.
+  const int scale = tile >= 176 ? 2 : 1, line = 11 * scale, gap = 6;
+  const int label_height = 4 * line + gap, cell_width = tile + gap,
+            cell_height = label_height + 2 * tile + gap + 2 * gap;
+  const int columns = 4, rows = int(methods.size() + 1 + columns - 1) / columns;
+  Image panel(columns * cell_width + gap, rows * cell_height + gap, 3, 255);
+  RenderOptions options;
+  options.width = options.height = tile;
+  const std::array<uint8_t, 3> ink = {20, 20, 20};
+
+  WarpMesh identity;
+  identity.F.resize(2, 3);
+  identity.F << 0, 1, 2, 0, 2, 3;
+  identity.source.resize(4, 2);
+  identity.source << 0, 0, source.width, 0, source.width, source.height, 0, source.height;
+  identity.screen = identity.source;
+  identity.screen_width = source.width;
+  identity.screen_height = source.height;
+  Image input = to_rgb(render(framed(identity, origin, side, tile), pyramid, options));
+  for (const CircleLens& lens : lenses)
+    outline_circle(input, (lens.center - origin) * (tile / side), lens.radius * tile / side);
+
+  for (size_t cell = 0; cell <= methods.size(); ++cell) {
+    const int left = gap + int(cell % columns) * cell_width;
+    const int top = gap + int(cell / columns) * cell_height;
+    if (cell == 0) {
+      draw_text(panel, left, top, "input", scale, ink);
+      draw_text(panel, left, top + line, "lens outlined", scale, ink);
+      paste(panel, input, left, top + label_height);
+      // The notes go where the heatmap is in the other cells, in the largest font that fits.
+      const char* notes[] = {"top: output",  "below: shape", "distortion",    "s1/s2 - 1",
+                             "focus: inner", "half of lens", "hides: % image"};
+      const int count = int(std::size(notes));
+      const int note_scale = count * (11 * scale + 2) <= tile ? scale : 1;
+      if (count * (11 * note_scale + 2) > tile) continue;
+      int y = top + label_height + tile + gap;
+      for (const char* note : notes) {
+        draw_text(panel, left, y, note, note_scale, ink);
+        y += 11 * note_scale + 2;
+      }
+      continue;
+    }
+    const Method& m = methods[cell - 1];
+    draw_text(panel, left, top, m.name, scale, ink);
+    draw_text(panel, left, top + line, "zoom " + fixed(m.zoom_center, 2), scale, ink);
+    draw_text(panel, left, top + 2 * line, "max " + fixed(m.regions.overall.conformal_max, 2),
+              scale, ink);
+    std::string notes;
+    if (m.regions.occluded_percent >= 0.05)
+      notes = "hides " + fixed(m.regions.occluded_percent, 1) + "%";
+    if (m.regions.overall.flipped > 0)
+      notes += (notes.empty() ? "" : ", ") + std::to_string(m.regions.overall.flipped) + " flipped";
+    draw_text(panel, left, top + 3 * line, notes, scale, ink);
+    const WarpMesh warp = framed(m.warp, origin, side, tile);
+    const Image image = to_rgb(render(warp, pyramid, options));
+    paste(panel, image, left, top + label_height);
+    paste(panel, heatmap(warp, m.measures.conformal, m.measures.flipped, image, heat_max), left,
+          top + label_height + tile + gap);
+  }
+  return with_legend(panel, heat_max, "shape distortion s1/s2 - 1");
+}
+
+nlohmann::json zone_json(const ZoneStatistics& zone) {
+  if (zone.triangles == 0) return {{"mean", nullptr}, {"max", nullptr}};
+  return {{"mean", zone.conformal_mean}, {"max", zone.conformal_max}};
+}
+
+std::string zone_cell(const ZoneStatistics& zone) {
+  if (zone.triangles == 0) return "—";
+  return fixed(zone.conformal_mean, 3) + " / " + fixed(zone.conformal_max, 3);
+}
+
+std::string area_cell(const ZoneStatistics& zone) {
+  return zone.triangles == 0 ? "—" : fixed(zone.area_distortion_mean, 3);
+}
+
+std::string report_markdown(const CompareArgs& args, const std::vector<CircleLens>& lenses,
+                            const std::vector<double>& zoom_requested,
+                            const std::vector<Method>& methods, double eq7_total,
+                            double image_area) {
+  std::ostringstream md;
+  md << "# geolens compare: " << fs::path(args.input).filename().string() << "\n\n";
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    md << "Lens " << k + 1 << ": circle at (" << fixed(lenses[k].center.x(), 1) << ", "
+       << fixed(lenses[k].center.y(), 1) << "), radius " << fixed(lenses[k].radius, 1)
+       << " px, zoom requested " << fixed(zoom_requested[k], 3)
+       << ", measured on the geometric lens " << fixed(lenses[k].zoom, 3)
+       << "; every classic lens is matched to that zoom (same measure) and radius.\n";
+  }
+  md << "\nShape distortion is s1/s2 - 1 of each triangle's source -> screen Jacobian (0 = shape "
+        "kept), mean (weighted by source area) / max per region. Regions by source position: "
+        "focus = within r / (2 zoom) of the centre (what a flat-top lens of the same radius and "
+        "zoom shows on the inner half of its disk), transition = the rest of the lens disk, "
+        "context = outside. Zoom at centre = magnification_at the first lens's centre. Focus "
+        "uniformity = max / min magnification over the focus triangles of a lens (the largest "
+        "over the lenses). Occluded = source area not shown, percent of the image. — = no "
+        "triangle in that region.\n\n";
+  md << "| method | zoom at centre | focus uniformity | focus | transition | context | overall "
+        "| occluded % | flipped |\n";
+  md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Method& m : methods) {
+    const RegionStatistics& r = m.regions;
+    md << "| " << m.name << " | " << fixed(m.zoom_center, 3) << " | "
+       << (r.focus_uniformity > 0 ? fixed(r.focus_uniformity, 3) : "—") << " | "
+       << zone_cell(r.focus) << " | " << zone_cell(r.transition) << " | " << zone_cell(r.context)
+       << " | " << zone_cell(r.overall) << " | " << fixed(r.occluded_percent, 2) << " | "
+       << r.overall.flipped << " |\n";
+  }
+  md << "\nArea distortion, mean of max(a, 1/a) - 1 with a = s1 s2 the area scale (0 = area "
+        "kept; the focus is magnified on purpose, so it is large there):\n\n";
+  md << "| method | focus | transition | context |\n|---|---:|---:|---:|\n";
+  for (const Method& m : methods) {
+    md << "| " << m.name << " | " << area_cell(m.regions.focus) << " | "
+       << area_cell(m.regions.transition) << " | " << area_cell(m.regions.context) << " |\n";
+  }
+  md << "\nGeometric lens, the paper's Eq. 7 energy of its flattening (cot weights, measured from "
+        "rigid): "
+     << fixed(eq7_total, 1) << " px^2, " << fixed(eq7_total / image_area, 5)
+     << " per source pixel.\n";
+  return md.str();
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "compare", "measure the geometric lens against the classic lenses at the same zoom");
+  c->add_option("input", a.input, "input image (PNG or JPEG)")->required();
+  c->add_option("-o,--output", a.output,
+                "output folder (created if missing; its parent must exist)")
+      ->required();
+  cli::add_lens_options(*c, a.lens);
+  c->add_option("--format", a.format, "image files: png or jpg")->capture_default_str();
+  c->add_option("--jpeg-quality", a.jpeg_quality, "JPEG quality of --format jpg, in [1, 100]")
+      ->capture_default_str();
+  c->add_option("--tile", a.tile, "panel tile side in pixels, in [64, 1024]")
+      ->capture_default_str();
+  c->add_option("--baseline-mesh", a.baseline_mesh,
+                "classic lens grid vertices along the long side, in [4, 1000]")
+      ->capture_default_str();
+  c->add_option("--heat-max", a.heat_max,
+                "shape distortion drawn red (0: the largest over all methods)")
+      ->capture_default_str();
+  return c;
+}
+
+int run_compare(const CompareArgs& a) {
+  // Validate everything before any work.
+  require(!a.output.empty(), "--output", "output folder must not be empty");
+  fs::path dir = a.output;
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/" is the folder "out"
+  if (fs::exists(dir)) {
+    require(fs::is_directory(dir), "--output", "'" + a.output + "' exists and is not a folder");
+  } else {
+    const fs::path parent = dir.parent_path();
+    require(parent.empty() || fs::is_directory(parent), "--output",
+            "folder '" + parent.string() + "' of '" + a.output + "' does not exist");
+  }
+  require(a.format == "png" || a.format == "jpg", "--format",
+          "expected png or jpg, got '" + a.format + "'");
+  require(a.jpeg_quality >= 1 && a.jpeg_quality <= 100, "--jpeg-quality",
+          "must be in [1, 100], got " + std::to_string(a.jpeg_quality));
+  require(a.tile >= 64 && a.tile <= 1024, "--tile",
+          "must be in [64, 1024], got " + std::to_string(a.tile));
+  require(a.baseline_mesh >= 4 && a.baseline_mesh <= 1000, "--baseline-mesh",
+          "must be in [4, 1000], got " + std::to_string(a.baseline_mesh));
+  require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
+          "must be >= 0, got " + std::to_string(a.heat_max));
+  const LensOptions options = cli::parse_options(a.lens);
+  const Image source = load_image(a.input);
+  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    require(lenses[k].region.kind() == RegionKind::kCircle, "--lens",
+            "lens " + std::to_string(k + 1) + " is a " + to_string(lenses[k].region.kind()) +
+                "; compare supports circle lenses only");
+    for (size_t j = 0; j < k; ++j) {
+      require((lenses[k].region.peak() - lenses[j].region.peak()).norm() >=
+                  lenses[k].region.size() + lenses[j].region.size(),
+              "--lens",
+              "lenses " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
+                  " overlap; compare needs disjoint circles");
+    }
+  }
+  std::vector<std::string> names = {"geometric"};
+  for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
+  std::vector<fs::path> outputs = {dir / "report.json", dir / "report.md",
+                                   dir / ("panel." + a.format)};
+  for (const std::string& name : names) {
+    outputs.push_back(dir / (name + "." + a.format));
+    outputs.push_back(dir / (name + "_heatmap." + a.format));
+  }
+  for (const fs::path& path : outputs)
+    require(!same_file(a.input, path), "--output",
+            "'" + path.string() + "' would overwrite the input file");
+
+  // The geometric lens, then the classic lenses matched to its measured zoom.
+  const GeometricLens geometric(source.width, source.height, options);
+  const LensResult solved = geometric.solve(lenses);
+  std::vector<CircleLens> targets;
+  std::vector<double> zoom_requested, measure_radius;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    if (std::abs(solved.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
+      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << solved.zoom_measured[k]
+                << " of the " << lenses[k].zoom << " requested\n";
+    }
+    targets.push_back(
+        {lenses[k].region.peak(), lenses[k].region.size(), std::max(1.0, solved.zoom_measured[k])});
+    zoom_requested.push_back(lenses[k].zoom);
+    // The radius GeometricLens measures its zoom over: a grid cell of the solved area, at least
+    // 0.05 r (docs/design.md, "Zoom, not height").
+    const double cell = solved.box.sizes().maxCoeff() / (options.mesh - 1);
+    measure_radius.push_back(std::max(cell, 0.05 * lenses[k].region.size()));
+  }
+  std::vector<Method> methods;
+  methods.push_back({"geometric", solved.warp, solved.zoom_measured[0], {}, {}});
+  for (ClassicLens kind : kClassicLenses) {
+    MatchedClassicLens matched = match_classic_lens(kind, targets, measure_radius, source.width,
+                                                    source.height, a.baseline_mesh);
+    methods.push_back({to_string(kind), std::move(matched.warp), matched.zoom_measured[0], {}, {}});
+  }
+  double heat_max = a.heat_max;
+  for (Method& m : methods) {
+    m.measures = measure_triangles(m.warp);
+    m.regions = measure_regions(m.warp, m.measures, targets, source.width, source.height);
+    if (a.heat_max == 0) heat_max = std::max(heat_max, m.regions.overall.conformal_max);
+  }
+  if (heat_max == 0) heat_max = 1;  // every method is the identity
+  // Over the solved mesh (with --extent local, the patch; the warp adds an identity frame).
+  const double eq7_total = eq7_energy(solved.lifted, solved.mesh.F, solved.flat).sum();
+
+  nlohmann::json report = {{"methods", nlohmann::json::array()}};
+  for (const Method& m : methods) {
+    const RegionStatistics& r = m.regions;
+    report["methods"].push_back(
+        {{"name", m.name},
+         {"zoom_center", m.zoom_center},
+         {"focus_uniformity",
+          r.focus_uniformity > 0 ? nlohmann::json(r.focus_uniformity) : nlohmann::json(nullptr)},
+         {"distortion",
+          {{"focus", zone_json(r.focus)},
+           {"transition", zone_json(r.transition)},
+           {"context", zone_json(r.context)},
+           {"overall", zone_json(r.overall)}}},
+         {"occluded_percent", r.occluded_percent},
+         {"flipped", r.overall.flipped}});
+  }
+  const std::string markdown = report_markdown(a, targets, zoom_requested, methods, eq7_total,
+                                               double(source.width) * source.height);
+
+  // Every file is written to a temporary name and renamed into place.
+  if (!fs::exists(dir)) fs::create_directory(dir);
+  const MipPyramid pyramid(source);
+  RenderOptions render_options;
+  render_options.width = source.width;
+  render_options.height = source.height;
+  for (const Method& m : methods) {
+    const Image image = to_rgb(render(m.warp, pyramid, render_options));
+    save_image((dir / (m.name + "." + a.format)).string(), image, a.jpeg_quality);
+    save_image(
+        (dir / (m.name + "_heatmap." + a.format)).string(),
+        with_legend(heatmap(m.warp, m.measures.conformal, m.measures.flipped, image, heat_max),
+                    heat_max, m.name + ": shape distortion s1/s2 - 1"),
+        a.jpeg_quality);
+  }
+  save_image((dir / ("panel." + a.format)).string(),
+             make_panel(source, pyramid, methods, targets, heat_max, a.tile), a.jpeg_quality);
+  write_text(dir / "report.json", report.dump(2) + "\n");
+  write_text(dir / "report.md", markdown);
+  return 0;
+}
+
+}  // namespace geolens

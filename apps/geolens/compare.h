@@ -1,0 +1,32 @@
+#pragma once
+// `geolens compare`: the geometric lens next to the classic lenses, measured the same way.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "lens_args.h"
+
+namespace geolens {
+
+struct CompareArgs {
+  std::string input, output;   ///< input image; output folder
+  cli::LensArgs lens;          ///< the same lens options as `magnify`
+  std::string format = "png";  ///< image files written: png or jpg
+  int jpeg_quality = 92;       ///< JPEG quality for format jpg, in [1, 100]
+  int tile = 256;              ///< panel tile side, pixels, in [64, 1024]
+  int baseline_mesh = 200;     ///< classic lens grid vertices along the long side, [4, 1000]
+  double heat_max = 0;         ///< distortion shown red; 0 = the largest over all methods
+};
+
+/// Registers the `compare` subcommand and its options on `app`.
+CLI::App* add_compare_command(CLI::App& app, CompareArgs& args);
+
+/// Solves the geometric lens, matches the six classic lenses to its measured zoom and radius,
+/// and writes into the output folder, per method NAME (geometric, zoom_in, fisheye,
+/// fisheye_smooth, bifocal, flattop_linear, flattop_cosine): NAME.FORMAT (the output) and
+/// NAME_heatmap.FORMAT (its shape distortion with a scale), then panel.FORMAT (every method side
+/// by side around the lenses, labelled), report.json and report.md. Returns the exit code; throws
+/// InvalidInput for bad input before writing anything.
+int run_compare(const CompareArgs& args);
+
+}  // namespace geolens
