@@ -113,6 +113,48 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --size 0x10", "--size");
 }
 
+TEST_F(Cli, RejectsBadPolygonsAndMasks) {
+  const std::string in = path("in.png"),
+                    out = " -o " + path("out.png") + " --stats " + path("stats.json");
+  auto polygon = [&](const std::string& name, const std::string& text) {
+    std::ofstream(path(name)) << text;
+    return " --lens polygon:" + path(name);
+  };
+  expect_rejected("magnify " + in + out + polygon("two.txt", "10 10\n50 10\n"), "3");
+  expect_rejected("magnify " + in + out + polygon("flat.txt", "10 10\n50 10\n90 10\n"), "area");
+  expect_rejected("magnify " + in + out + polygon("bowtie.txt", "10 10\n90 90\n90 10\n20 60\n"),
+                  "intersect");
+  expect_rejected("magnify " + in + out + polygon("outside.txt", "10 10\n400 10\n10 90\n"),
+                  "outside");
+  expect_rejected("magnify " + in + out + polygon("words.txt", "10 10\nten 90\n90 10\n"),
+                  "words.txt");
+  expect_rejected("magnify " + in + out + " --lens polygon:" + path("none.txt"), "none.txt");
+  save_image(path("empty.png"), Image(256, 192, 1, 0));
+  expect_rejected("magnify " + in + out + " --lens mask:" + path("empty.png"), "non-zero");
+  save_image(path("small.png"), Image(100, 100, 1, 255));
+  expect_rejected("magnify " + in + out + " --lens mask:" + path("small.png"), "100x100");
+  expect_rejected("magnify " + in + out + " --lens mask:" + path("none.png"), "none.png");
+}
+
+// A thresholded photograph's object (the cup rim, thin and wide parts) magnified as a whole.
+TEST_F(Cli, MaskOfARealObjectReachesItsZoom) {
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  const CliRun r =
+      run("magnify " + examples + "coffee.jpg -o " + path("out.png") + " --lens mask:" + examples +
+          "coffee_rim_mask.png:2 --stats " + path("stats.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(path("stats.json"));
+  const nlohmann::json s = nlohmann::json::parse(in);
+  ASSERT_EQ(s.at("lenses").size(), 1u);
+  const nlohmann::json& lens = s.at("lenses")[0];
+  EXPECT_EQ(lens.at("kind"), "mask");
+  EXPECT_NEAR(lens.at("zoom_measured").get<double>(), 2.0, 0.3);
+  EXPECT_EQ(s.at("flipped").get<int>(), 0);
+  // The bounding box is the rim's: inside the image, wider than tall.
+  const std::vector<double> box = lens.at("bbox");
+  EXPECT_GT(box[2] - box[0], box[3] - box[1]);
+}
+
 TEST_F(Cli, HelpAndVersionSucceed) {
   EXPECT_EQ(run("--help").code, 0);
   EXPECT_EQ(run("magnify --help").code, 0);

@@ -148,3 +148,28 @@ TEST(GeometricLens, LocalExtentSolvesAPatchAndLeavesTheRestAlone) {
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Several lenses in one solve, each calibrated to its own zoom; overlapping ones combine by max
+// of height without a fold.
+TEST(GeometricLens, SeveralLensesEachReachTheirZoom) {
+  const GeometricLens lens(1024, 1024);
+  const std::vector<std::vector<Lens>> cases = {
+      {Lens{Region::circle({300, 300}, 110), 2.0}, Lens{Region::circle({720, 700}, 130), 3.0}},
+      {Lens{Region::circle({450, 500}, 120), 2.0}, Lens{Region::circle({600, 520}, 120), 2.5}},
+      {Lens{Region::circle({200, 200}, 90), 1.5}, Lens{Region::circle({800, 200}, 90), 2.0},
+       Lens{Region::circle({512, 512}, 110), 2.5}, Lens{Region::circle({200, 800}, 90), 3.0},
+       Lens{Region::circle({820, 820}, 90), 2.0, Profile::kMesa}}};
+  for (const std::vector<Lens>& lenses : cases) {
+    const LensResult r = lens.solve(lenses);
+    for (size_t k = 0; k < lenses.size(); ++k)
+      EXPECT_NEAR(r.zoom_measured[k] / lenses[k].zoom, 1.0, 0.15)
+          << lenses.size() << " lenses, lens " << k;
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0) << lenses.size() << " lenses";
+  }
+}
+
+}  // namespace
+}  // namespace geolens
