@@ -145,6 +145,23 @@ FlattenOptions GeometricLens::flatten_options() const {
   return o;
 }
 
+// Lifts `mesh` (covering `box`) and maps the texture onto it, filling r's heights, mesh, box,
+// source coordinates and the lift and texture timings (from `start`).
+Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
+                                       const std::vector<double>& heights, const PlanarMesh& mesh,
+                                       const Eigen::AlignedBox2d& box, Clock::time_point start,
+                                       LensResult& r) const {
+  r.heights = heights;
+  r.mesh = mesh;
+  r.box = box;
+  Lifted lifted = lift(r.mesh.V, lenses, heights);
+  r.timings.lift = ms_since(start);
+  const auto t = Clock::now();
+  texture(lifted, r);
+  r.timings.texture = ms_since(t);
+  return lifted;
+}
+
 // The stages after the lift: texture coordinates (with the fold fallback), then the framing and
 // the zoom measured at each lens's peak once `r.flattening` is known.
 void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
@@ -180,9 +197,10 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
                                              const std::vector<double>& heights) const {
   const auto start = Clock::now();
   LensResult r;
-  r.heights = heights;
-  r.mesh = subdivide(
-      base_grid(lenses, r.box),
+  Eigen::AlignedBox2d box;
+  const Grid grid = base_grid(lenses, box);
+  const PlanarMesh mesh = subdivide(
+      grid,
       [&](const Eigen::Vector2d& p) {
         double z = 0;
         for (size_t k = 0; k < lenses.size(); ++k)
@@ -190,13 +208,9 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
         return z;
       },
       options_.subdivision);
-  const Lifted lifted = lift(r.mesh.V, lenses, heights);
-  r.timings.lift = ms_since(start);
+  const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r);
 
   auto t = Clock::now();
-  texture(lifted, r);
-  r.timings.texture = ms_since(t);
-
   t = Clock::now();
   const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options());
   r.timings.factorize = ms_since(t);
@@ -217,15 +231,11 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
                                        const std::vector<double>& heights) {
   const auto start = Clock::now();
   LensResult r;
-  r.heights = heights;
-  r.mesh = base_grid(lenses, r.box);
-  const Lifted lifted = lift(r.mesh.V, lenses, heights);
-  r.timings.lift = ms_since(start);
+  Eigen::AlignedBox2d box;
+  const Grid grid = base_grid(lenses, box);
+  const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r);
 
   auto t = Clock::now();
-  texture(lifted, r);
-  r.timings.texture = ms_since(t);
-
   t = Clock::now();
   // A local patch has the same topology wherever it is, as long as its size is unchanged.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&

@@ -2,27 +2,23 @@
 // document, the identity at zoom 1, and the exported flattening checked by an independent ARAP.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "geolens/image.h"
 #include "support/arap_reference.h"
+#include "support/cli_runner.h"
 
 namespace geolens {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string err;
-};
+using testing::CliRun;
 
 class Cli : public ::testing::Test {
  protected:
@@ -48,17 +44,7 @@ class Cli : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   CliRun run(const std::string& arguments) const {
-    const std::string err = path("stderr.txt");
-    const std::string command =
-        std::string(GEOLENS_CLI) + " " + arguments + " > /dev/null 2> " + err;
-    const int status = std::system(command.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    std::stringstream s;
-    s << in.rdbuf();
-    r.err = s.str();
-    return r;
+    return testing::run_cli(arguments, path("stderr.txt"));
   }
 
   // Bad input: exit 2, exactly one line on stderr, no output written.

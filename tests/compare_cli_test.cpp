@@ -3,17 +3,16 @@
 // rejected with one line, exit code 2 and nothing written.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "geolens/image.h"
+#include "support/cli_runner.h"
 
 namespace geolens {
 namespace {
@@ -23,10 +22,7 @@ namespace fs = std::filesystem;
 const char* kMethods[] = {"geometric", "zoom_in",        "fisheye",       "fisheye_smooth",
                           "bifocal",   "flattop_linear", "flattop_cosine"};
 
-struct CliRun {
-  int code = -1;
-  std::string err;
-};
+using testing::CliRun;
 
 class CompareCli : public ::testing::Test {
  protected:
@@ -55,17 +51,7 @@ class CompareCli : public ::testing::Test {
   }
 
   CliRun run(const std::string& arguments) const {
-    const std::string err = path("stderr.txt");
-    const std::string command =
-        std::string(GEOLENS_CLI) + " " + arguments + " > /dev/null 2> " + err;
-    const int status = std::system(command.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    std::stringstream s;
-    s << in.rdbuf();
-    r.err = s.str();
-    return r;
+    return testing::run_cli(arguments, path("stderr.txt"));
   }
 
   nlohmann::json report(const std::string& out) const {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -94,6 +95,9 @@ class GeometricLens {
  private:
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
   FlattenOptions flatten_options() const;
+  Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
+                          const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
+                          std::chrono::steady_clock::time_point start, LensResult& r) const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
   LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
