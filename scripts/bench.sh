@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds geolens (Release, in build/) with the benchmark-only CGAL and runs both benchmark
+# executables, medians of 3 repetitions: geolens_bench (the stage timings, bench/README.md) and
+# geolens_cgal_bench (CGAL's ARAP parameterizer against geolens's flattening, issue 5). Run as
+# root on Debian 12; takes a few minutes, most of it CGAL on the 200 x 200 grid.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if ! dpkg-query -W -f='${Status}' libcgal-dev 2>/dev/null | grep -q "install ok installed"; then
+  apt-get update
+  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libcgal-dev
+fi
+bash scripts/setup.sh
+echo "nproc: $(nproc)"
+for exe in geolens_bench geolens_cgal_bench; do
+  "./build/bench/$exe" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+done
