@@ -7,35 +7,22 @@
 #include <iomanip>
 
 #include "geolens/errors.h"
+#include "geolens/file_io.h"
 
 namespace geolens {
 
 void write_obj(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixX3i& F) {
   require(V.cols() == 2 || V.cols() == 3, "write_obj",
           "vertices must have 2 or 3 columns, got " + std::to_string(V.cols()));
-  const std::string temporary = path + ".tmp-" + std::to_string(getpid());
-  {
-    std::ofstream out(temporary);
-    out << std::setprecision(17);
-    for (Eigen::Index i = 0; i < V.rows(); ++i) {
-      out << "v " << V(i, 0) << ' ' << V(i, 1) << ' ' << (V.cols() == 3 ? V(i, 2) : 0.0) << '\n';
-    }
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      out << "f " << F(f, 0) + 1 << ' ' << F(f, 1) + 1 << ' ' << F(f, 2) + 1 << '\n';
-    }
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw IoError("write_obj: cannot write '" + path + "'");
-    }
+  std::ostringstream out;
+  out << std::setprecision(17);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    out << "v " << V(i, 0) << ' ' << V(i, 1) << ' ' << (V.cols() == 3 ? V(i, 2) : 0.0) << '\n';
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw IoError("write_obj: cannot write '" + path + "'");
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    out << "f " << F(f, 0) + 1 << ' ' << F(f, 1) + 1 << ' ' << F(f, 2) + 1 << '\n';
   }
+  write_file(path, out.str());
 }
 
 }  // namespace geolens

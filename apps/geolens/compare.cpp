@@ -1,12 +1,10 @@
 #include "compare.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -19,6 +17,7 @@
 #include "geolens/distortion.h"
 #include "geolens/distortion_regions.h"
 #include "geolens/errors.h"
+#include "geolens/file_io.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/heatmap.h"
 #include "geolens/image.h"
@@ -37,27 +36,6 @@ struct Method {
   TriangleDistortion measures;
   RegionStatistics regions;
 };
-
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code error;
-  if (fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
-  return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
-}
-
-// Writes `text` to a temporary file next to `path` and renames it into place.
-void write_text(const fs::path& path, const std::string& text) {
-  const fs::path temporary = path.string() + ".tmp-" + std::to_string(getpid());
-  {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out.flush()) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw IoError("compare: cannot write '" + path.string() + "'");
-    }
-  }
-  fs::rename(temporary, path);
-}
 
 std::string fixed(double value, int digits) {
   char text[64];
@@ -309,7 +287,7 @@ int run_compare(const CompareArgs& a) {
     outputs.push_back(dir / (name + "_heatmap." + a.format));
   }
   for (const fs::path& path : outputs)
-    require(!same_file(a.input, path), "--output",
+    require(!same_file(a.input, path.string()), "--output",
             "'" + path.string() + "' would overwrite the input file");
 
   // The geometric lens, then the classic lenses matched to its measured zoom.
@@ -383,8 +361,8 @@ int run_compare(const CompareArgs& a) {
   }
   save_image((dir / ("panel." + a.format)).string(),
              make_panel(source, pyramid, methods, targets, heat_max, a.tile), a.jpeg_quality);
-  write_text(dir / "report.json", report.dump(2) + "\n");
-  write_text(dir / "report.md", markdown);
+  write_file((dir / "report.json").string(), report.dump(2) + "\n");
+  write_file((dir / "report.md").string(), markdown);
   return 0;
 }
 

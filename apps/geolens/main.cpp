@@ -1,12 +1,10 @@
 // geolens: magnify regions of an image with the geometric focus+context lens.
 
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -15,6 +13,7 @@
 #include "compare.h"
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
+#include "geolens/file_io.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/image.h"
 #include "geolens/mesh_io.h"
@@ -44,12 +43,6 @@ std::pair<int, int> parse_size(const std::string& text) {
   const size_t x = text.find('x');
   require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
   return {side(text.substr(0, x)), side(text.substr(x + 1))};
-}
-
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code error;
-  if (fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
-  return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
 }
 
 // An output path must be in an existing folder and must not be the input.
@@ -157,13 +150,7 @@ int run_magnify(const MagnifyArgs& a) {
     const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     const nlohmann::json stats =
         cli::make_stats(lenses, options, result, distortion, render_ms, total_ms);
-    const std::string temporary = a.stats + ".tmp-" + std::to_string(getpid());
-    {
-      std::ofstream out(temporary);
-      out << stats.dump(2) << '\n';
-      if (!out.flush()) throw IoError("--stats: cannot write '" + a.stats + "'");
-    }
-    fs::rename(temporary, a.stats);
+    write_file(a.stats, stats.dump(2) + "\n");
   }
   return 0;
 }
