@@ -10,6 +10,7 @@
 #include <random>
 
 #include "geolens/errors.h"
+#include "support/polygon_reference.h"
 
 namespace geolens {
 namespace {
@@ -26,29 +27,6 @@ Points star(double angle) {
 }
 
 const Points kL{{0, 0}, {200, 0}, {200, 60}, {60, 60}, {60, 200}, {0, 200}};
-
-// Brute-force references.
-bool even_odd(const Points& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
-        p.x() < poly[j].x() + (p.y() - poly[j].y()) * (poly[i].x() - poly[j].x()) /
-                                  (poly[i].y() - poly[j].y())) {
-      in = !in;
-    }
-  }
-  return in;
-}
-
-double distance(const Points& poly, const Eigen::Vector2d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
-    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (p - a - t * (b - a)).norm());
-  }
-  return best;
-}
 
 std::string message_of(const Points& poly) {
   try {
@@ -151,8 +129,9 @@ TEST(RasterizePolygon, MarksExactlyTheNodesInside) {
     for (int j = 0; j < height; ++j) {
       for (int i = 0; i < width; ++i) {
         const Eigen::Vector2d p = origin + cell * Eigen::Vector2d(i, j);
-        if (distance(poly, p) < 1e-9) continue;  // on the boundary: either way
-        EXPECT_EQ(inside[size_t(j) * width + i], even_odd(poly, p)) << i << " " << j;
+        if (testing::brute_boundary_distance(poly, p) < 1e-9)
+          continue;  // on the boundary: either way
+        EXPECT_EQ(inside[size_t(j) * width + i], testing::brute_inside(poly, p)) << i << " " << j;
       }
     }
   }
@@ -167,9 +146,9 @@ TEST(PolygonIndex, AgreesWithBruteForce) {
     std::uniform_real_distribution<double> coordinate(-20, 220);
     for (int k = 0; k < 4000; ++k) {
       const Eigen::Vector2d p(coordinate(rng), coordinate(rng));
-      const double d = distance(poly, p);
+      const double d = testing::brute_boundary_distance(poly, p);
       if (d > 1e-9) {
-        EXPECT_EQ(index.contains(p), even_odd(poly, p)) << p.transpose();
+        EXPECT_EQ(index.contains(p), testing::brute_inside(poly, p)) << p.transpose();
       }
       EXPECT_NEAR(index.boundary_distance(p, 7.5), std::min(d, 7.5), 1e-9) << p.transpose();
       EXPECT_NEAR(index.boundary_distance(p, 300), std::min(d, 300.0), 1e-9) << p.transpose();

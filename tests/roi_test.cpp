@@ -8,6 +8,7 @@
 
 #include "geolens/errors.h"
 #include "geolens/image.h"
+#include "support/polygon_reference.h"
 
 namespace geolens {
 namespace {
@@ -39,29 +40,6 @@ Points star(const Eigen::Vector2d& centre, double R, double angle) {
     p.push_back(centre + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
   }
   return p;
-}
-
-/// Brute-force even-odd point in polygon and distance to the boundary, for reference.
-bool inside(const Points& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    if ((poly[i].y() > p.y()) != (poly[j].y() > p.y()) &&
-        p.x() < poly[j].x() + (p.y() - poly[j].y()) * (poly[i].x() - poly[j].x()) /
-                                  (poly[i].y() - poly[j].y())) {
-      in = !in;
-    }
-  }
-  return in;
-}
-
-double boundary_distance(const Points& poly, const Eigen::Vector2d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
-    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (p - a - t * (b - a)).norm());
-  }
-  return best;
 }
 
 /// How fast the fields vary between neighbouring samples `step` apart over the region's box.
@@ -120,7 +98,7 @@ TEST(PolygonRegion, DepthIsZeroExactlyOnTheBoundaryAndOutside) {
   }
   for (double y = -5; y < 220; y += 1.3) {
     for (double x = -5; x < 220; x += 1.3) {
-      if (!inside(poly, {x, y})) {
+      if (!testing::brute_inside(poly, {x, y})) {
         EXPECT_EQ(region.depth({x, y}), 0) << x << " " << y;
       }
     }
@@ -172,14 +150,14 @@ TEST_P(StarRegion, DepthIsOneOnTheSpokesZeroOnTheBoundaryAndContinuous) {
   const Points poly = star(c, R, GetParam());
   const Region region = Region::polygon(poly);
   EXPECT_LE((region.peak() - c).norm(), 1.5);
-  EXPECT_TRUE(inside(poly, region.peak()));
+  EXPECT_TRUE(testing::brute_inside(poly, region.peak()));
   for (size_t i = 0; i < poly.size(); ++i) {
     const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
     for (int k = 0; k <= 64; ++k) EXPECT_NEAR(region.depth(a + (b - a) * k / 64.0), 0, 1e-12);
   }
   for (double y = c.y() - R - 5; y < c.y() + R + 5; y += 2.9) {
     for (double x = c.x() - R - 5; x < c.x() + R + 5; x += 2.9) {
-      if (!inside(poly, {x, y})) {
+      if (!testing::brute_inside(poly, {x, y})) {
         EXPECT_EQ(region.depth({x, y}), 0) << x << " " << y;
       }
     }
@@ -189,7 +167,7 @@ TEST_P(StarRegion, DepthIsOneOnTheSpokesZeroOnTheBoundaryAndContinuous) {
     for (double s = 0; s <= 0.85 * R; s += 3.1) {
       const Eigen::Vector2d p = c + s * along;
       // b / (a + b) with the raster's axis within a pixel of the spoke.
-      const double b = boundary_distance(poly, p);
+      const double b = testing::brute_boundary_distance(poly, p);
       EXPECT_GE(region.depth(p), b / (b + 1)) << tip << " " << s;
       // Maximal on the spoke, away from the centre where the spokes meet: it falls off to either
       // side.
@@ -198,7 +176,8 @@ TEST_P(StarRegion, DepthIsOneOnTheSpokesZeroOnTheBoundaryAndContinuous) {
         EXPECT_LT(region.depth(p - 0.3 * b * across), region.depth(p)) << tip << " " << s;
       }
       // Thickness along a spoke is the half-width of the arm there.
-      EXPECT_NEAR(region.thickness(p), boundary_distance(poly, p), 1.0) << tip << " " << s;
+      EXPECT_NEAR(region.thickness(p), testing::brute_boundary_distance(poly, p), 1.0)
+          << tip << " " << s;
     }
   }
   const Variation v = variation(region, 0.5);

@@ -1,6 +1,5 @@
 // geolens: magnify regions of an image with the geometric focus+context lens.
 
-
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
