@@ -16,7 +16,10 @@ namespace fs = std::filesystem;
 class FileIo : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "geolens_file_io_test";
+    // One folder per test: ctest runs the tests of this fixture in parallel processes.
+    dir_ = fs::temp_directory_path() /
+           ("geolens_file_io_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
