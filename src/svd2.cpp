@@ -21,15 +21,4 @@ SignedSvd2 signed_svd(const Eigen::Matrix2d& J) {
   return s;
 }
 
-Eigen::Matrix2d rotation(double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  Eigen::Matrix2d R;
-  R << c, -s, s, c;
-  return R;
-}
-
-Eigen::Matrix2d compose(const SignedSvd2& svd, double a, double b) {
-  return rotation(svd.phi) * Eigen::Vector2d(a, b).asDiagonal() * rotation(svd.theta);
-}
-
 }  // namespace geolens
