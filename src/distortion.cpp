@@ -13,12 +13,32 @@
 namespace geolens {
 
 namespace {
+
 Eigen::Matrix2d edges(const Eigen::MatrixX2d& P, const Eigen::MatrixX3i& F, Eigen::Index f) {
   Eigen::Matrix2d E;
   E.col(0) = (P.row(F(f, 1)) - P.row(F(f, 0))).transpose();
   E.col(1) = (P.row(F(f, 2)) - P.row(F(f, 0))).transpose();
   return E;
 }
+
+struct Measure {
+  double magnification, conformal, source_area;
+  bool flipped;
+};
+
+// The measures of triangle f (see measure_triangles).
+Measure measure(const WarpMesh& mesh, Eigen::Index f) {
+  const Eigen::Matrix2d S = edges(mesh.source, mesh.F, f);
+  const double det_s = S.determinant();
+  if (std::abs(det_s) <= 1e-12)
+    return {0.0, std::numeric_limits<double>::infinity(), 0.5 * std::abs(det_s), true};
+  const Eigen::Matrix2d J = edges(mesh.screen, mesh.F, f) * S.inverse();
+  const SignedSvd2 svd = signed_svd(J);
+  const double s1 = svd.s1, s2 = std::abs(svd.s2);
+  return {std::sqrt(s1 * s2), s2 > 0 ? s1 / s2 - 1 : std::numeric_limits<double>::infinity(),
+          0.5 * std::abs(det_s), J.determinant() <= 0};
+}
+
 }  // namespace
 
 TriangleDistortion measure_triangles(const WarpMesh& mesh) {
@@ -31,21 +51,11 @@ TriangleDistortion measure_triangles(const WarpMesh& mesh) {
   d.source_area.resize(m);
   d.flipped.resize(m);
   for (Eigen::Index f = 0; f < m; ++f) {
-    const Eigen::Matrix2d S = edges(mesh.source, mesh.F, f);
-    const double det_s = S.determinant();
-    d.source_area(f) = 0.5 * std::abs(det_s);
-    if (std::abs(det_s) <= 1e-12) {
-      d.magnification(f) = 0;
-      d.conformal(f) = std::numeric_limits<double>::infinity();
-      d.flipped(f) = true;
-      continue;
-    }
-    const Eigen::Matrix2d J = edges(mesh.screen, mesh.F, f) * S.inverse();
-    const SignedSvd2 svd = signed_svd(J);
-    const double s1 = svd.s1, s2 = std::abs(svd.s2);
-    d.magnification(f) = std::sqrt(s1 * s2);
-    d.conformal(f) = s2 > 0 ? s1 / s2 - 1 : std::numeric_limits<double>::infinity();
-    d.flipped(f) = J.determinant() <= 0;
+    const Measure t = measure(mesh, f);
+    d.magnification(f) = t.magnification;
+    d.conformal(f) = t.conformal;
+    d.source_area(f) = t.source_area;
+    d.flipped(f) = t.flipped;
   }
   return d;
 }
@@ -86,13 +96,15 @@ double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures
 }
 
 double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, double radius) {
-  WarpMesh near{Eigen::MatrixX3i(), mesh.source, mesh.screen, mesh.screen_width,
-                mesh.screen_height};
-  const std::vector<Eigen::Index> faces = triangles_near(mesh, point, radius);
-  near.F.resize(Eigen::Index(faces.size()), 3);
-  for (size_t k = 0; k < faces.size(); ++k) near.F.row(Eigen::Index(k)) = mesh.F.row(faces[k]);
-  const TriangleDistortion measures = measure_triangles(near);
-  return magnification_at(near, measures, point, radius);
+  require(mesh.source.rows() == mesh.screen.rows(), "magnification_at",
+          "source and screen must have the same number of vertices");
+  double sum = 0, weight = 0;
+  for (Eigen::Index f : triangles_near(mesh, point, radius)) {
+    const Measure t = measure(mesh, f);
+    sum += t.magnification * t.source_area;
+    weight += t.source_area;
+  }
+  return weight > 0 ? sum / weight : 0.0;
 }
 
 DistortionSummary summarize(const TriangleDistortion& measures) {
