@@ -12,6 +12,7 @@
 #include "geolens/image.h"
 #include "support/arap_reference.h"
 #include "support/cli_runner.h"
+#include "support/scratch_folder.h"
 
 namespace geolens {
 namespace {
@@ -20,14 +21,10 @@ namespace fs = std::filesystem;
 
 using testing::CliRun;
 
-class Cli : public ::testing::Test {
+class Cli : public testing::ScratchFolderTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("geolens_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchFolderTest::SetUp();
     // A 256 x 192 smooth colour pattern with fine stripes.
     Image image(256, 192, 3);
     for (int y = 0; y < image.height; ++y)
@@ -39,9 +36,6 @@ class Cli : public ::testing::Test {
       }
     save_image(path("in.png"), image);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   CliRun run(const std::string& arguments) const {
     return testing::run_cli(arguments, path("stderr.txt"));
@@ -59,8 +53,6 @@ class Cli : public ::testing::Test {
     for (const auto& entry : fs::directory_iterator(dir_))
       EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
   }
-
-  fs::path dir_;
 };
 
 TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {

@@ -13,6 +13,7 @@
 
 #include "geolens/image.h"
 #include "support/cli_runner.h"
+#include "support/scratch_folder.h"
 
 namespace geolens {
 namespace {
@@ -24,19 +25,8 @@ const char* kMethods[] = {"geometric", "zoom_in",        "fisheye",       "fishe
 
 using testing::CliRun;
 
-class CompareCli : public ::testing::Test {
+class CompareCli : public testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("geolens_compare_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
   // A size x size colour pattern with fine stripes.
   void write_input(const std::string& name, int size) const {
     Image image(size, size, 3);
@@ -76,8 +66,6 @@ class CompareCli : public ::testing::Test {
     for (const auto& entry : fs::recursive_directory_iterator(dir_))
       EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
   }
-
-  fs::path dir_;
 };
 
 // The issue's setting: 1024 x 1024, r = 150, zoom 2.

@@ -7,25 +7,14 @@
 #include <sstream>
 
 #include "geolens/errors.h"
+#include "support/scratch_folder.h"
 
 namespace geolens {
 namespace {
 
 namespace fs = std::filesystem;
 
-class FileIo : public ::testing::Test {
- protected:
-  void SetUp() override {
-    // One folder per test: ctest runs the tests of this fixture in parallel processes.
-    dir_ = fs::temp_directory_path() /
-           ("geolens_file_io_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+using FileIo = testing::ScratchFolderTest;
 
 TEST_F(FileIo, WritesTheWholeContentAndLeavesNoTemporary) {
   const std::string path = (dir_ / "a.txt").string();

@@ -1,7 +1,6 @@
 #include "geolens/image.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "geolens/errors.h"
+#include "support/scratch_folder.h"
 
 namespace fs = std::filesystem;
 using geolens::Image;
@@ -22,18 +22,8 @@ using geolens::IoError;
 namespace {
 
 /// A fresh empty folder per test, removed afterwards.
-class ImageFileTest : public ::testing::Test {
+class ImageFileTest : public geolens::testing::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("geolens_image_test_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
   /// Names of the entries of the folder, sorted.
   std::vector<std::string> entries() const {
     std::vector<std::string> names;
@@ -42,8 +32,6 @@ class ImageFileTest : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  fs::path dir_;
 };
 
 /// A pattern that uses every byte value and differs between channels.
