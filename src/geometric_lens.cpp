@@ -46,7 +46,7 @@ Eigen::MatrixX2d frame(const Eigen::MatrixX2d& X, Boundary boundary, double widt
 void add_identity_frame(WarpMesh& warp, const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
                         double width, double height) {
   const Eigen::Vector2d lo = box.min(), hi = box.max();
-  // Border vertices of the patch per side, in counter-clockwise order of the ring.
+  // The four image corners are appended as identity vertices.
   const Eigen::Index first = warp.source.rows();
   const Eigen::Vector2d corner[4] = {{0, 0}, {width, 0}, {width, height}, {0, height}};
   warp.source.conservativeResize(first + 4, 2);
@@ -162,8 +162,7 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
   return lifted;
 }
 
-// The stages after the lift: texture coordinates (with the fold fallback), then the framing and
-// the zoom measured at each lens's peak once `r.flattening` is known.
+// Texture coordinates of the lifted mesh, with the fold fallback.
 void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
   std::vector<char> fixed(lifted.inside.size());
   for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || r.mesh.sides[i] != 0;
@@ -176,6 +175,7 @@ void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
   }
 }
 
+// After the flattening: the framed WarpMesh and the zoom measured at each lens's peak.
 void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted,
                            LensResult& r) const {
   r.lifted = lifted.V;
@@ -211,7 +211,6 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r);
 
   auto t = Clock::now();
-  t = Clock::now();
   const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options());
   r.timings.factorize = ms_since(t);
 
@@ -236,7 +235,6 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r);
 
   auto t = Clock::now();
-  t = Clock::now();
   // A local patch has the same topology wherever it is, as long as its size is unchanged.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
                              (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9;
