@@ -52,7 +52,7 @@ void check_output_path(const std::string& path, const std::string& input, const 
   require(!same_file(input, path), option, "'" + path + "' is the input file");
 }
 
-// Draws a 2-pixel outline of each lens circle (scaled to the image) in red.
+// Draws a 3-pixel outline of each circle lens (scaled to the image) in red.
 void outline_lenses(Image& image, const std::vector<Lens>& lenses, double scale_x, double scale_y) {
   for (const Lens& lens : lenses) {
     if (lens.region.kind() != RegionKind::kCircle) continue;
