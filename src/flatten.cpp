@@ -71,6 +71,13 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   require(sides.size() == size_t(n), "Flattener", "sides must have one entry per vertex");
   require(F.rows() > 0 && F.minCoeff() >= 0 && F.maxCoeff() < n, "Flattener",
           "faces must index the " + std::to_string(n) + " vertices");
+  corner_start_.assign(size_t(n) + 1, 0);
+  for (Eigen::Index k = 0; k < F.size(); ++k) ++corner_start_[size_t(F(k / 3, k % 3)) + 1];
+  for (size_t v = 0; v < size_t(n); ++v) corner_start_[v + 1] += corner_start_[v];
+  corner_.resize(size_t(F.size()));
+  std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
+  for (Eigen::Index k = 0; k < F.size(); ++k)
+    corner_[size_t(fill[size_t(F(k / 3, k % 3))]++)] = int(k);
   assemble(V3, level);
 
   std::vector<char> fix_x(size_t(n), 0), fix_y(size_t(n), 0);
@@ -105,10 +112,18 @@ void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
               std::to_string(rest_.rows()));
   rest_ = V3.leftCols<2>();
   assemble(V3, level);
+  // The rows the lift touches (a triangle with a lifted corner changes all three): where the
+  // next lift's changes will be, for the factorizations' windows.
+  std::vector<char> lifted(size_t(V3.rows()), 0);
+  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+    if (level(F_(f, 0)) > 0 || level(F_(f, 1)) > 0 || level(F_(f, 2)) > 0)
+      lifted[size_t(F_(f, 0))] = lifted[size_t(F_(f, 1))] = lifted[size_t(F_(f, 2))] = 1;
+  }
   if (solver_y_) {
-    parallel_invoke([&] { solver_x_->refactorize(L_); }, [&] { solver_y_->refactorize(L_); });
+    parallel_invoke([&] { solver_x_->refactorize(L_, lifted); },
+                    [&] { solver_y_->refactorize(L_, lifted); });
   } else {
-    solver_x_->refactorize(L_);
+    solver_x_->refactorize(L_, lifted);
   }
 }
 
@@ -117,46 +132,66 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   require(level.size() == n, "Flattener", "level must have one entry per vertex");
   // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
   triangles_.resize(size_t(F_.rows()));
-  double mean_area = 0;
-  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
-    const Eigen::Vector3d e1 = V3.row(F_(f, 1)) - V3.row(F_(f, 0));
-    const Eigen::Vector3d e2 = V3.row(F_(f, 2)) - V3.row(F_(f, 0));
-    const double l1 = e1.norm(), cross = e1.cross(e2).norm();
-    require(l1 > 0 && cross > 0, "Flattener",
-            "triangle " + std::to_string(f) + " is degenerate in 3D");
-    Triangle& t = triangles_[size_t(f)];
-    t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
-    t.S_inv = t.S.inverse();
-    t.area2c = cross;  // 2 A, times c_t below
-    mean_area += 0.5 * cross;
-  }
-  mean_area /= double(F_.rows());
+  std::vector<double> planar_area(triangles_.size());
+  std::vector<char> degenerate(triangles_.size(), 0);
+  parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      const Eigen::Index fi = Eigen::Index(f);
+      const Eigen::Vector3d e1 = V3.row(F_(fi, 1)) - V3.row(F_(fi, 0));
+      const Eigen::Vector3d e2 = V3.row(F_(fi, 2)) - V3.row(F_(fi, 0));
+      const double l1 = e1.norm(), cross = e1.cross(e2).norm();
+      if (!(l1 > 0 && cross > 0)) {
+        degenerate[f] = 1;
+        continue;
+      }
+      Triangle& t = triangles_[f];
+      t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
+      t.S_inv = t.S.inverse();
+      t.area2c = cross;  // 2 A, times c_t below
+      planar_area[f] = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    }
+  });
+  const auto bad = std::find(degenerate.begin(), degenerate.end(), 1);
+  require(bad == degenerate.end(), "Flattener",
+          "triangle " + std::to_string(bad - degenerate.begin()) + " is degenerate in 3D");
+  // The paper weights' area normalization: any constant scales E without moving its minimum;
+  // the planar mean keeps the weights of unlifted triangles bit-identical from lift to lift,
+  // so a moved lens changes only the rows it lifts (WindowedCholesky relies on it).
+  const double mean_area =
+      std::accumulate(planar_area.begin(), planar_area.end(), 0.0) / double(triangles_.size());
+  parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      Triangle& t = triangles_[f];
+      double c = 1.0;
+      if (options_.weights == FlattenWeights::kPaper) {
+        const Eigen::Index fi = Eigen::Index(f);
+        const double h = (level(F_(fi, 0)) + level(F_(fi, 1)) + level(F_(fi, 2))) / 3.0;
+        c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
+      }
+      t.area2c *= c;
+      const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d a = s[(k + 1) % 3] - s[k], b = s[(k + 2) % 3] - s[k];
+        t.w(k) = c * a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
+      }
+    }
+  });
 
   // L = sum over triangles and their edges (i, j) of w (e_i - e_j)(e_i - e_j)^T, entries in a
-  // fixed order so the values can be re-assembled into the same pattern.
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(size_t(F_.rows()) * 12);
-  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
-    Triangle& t = triangles_[size_t(f)];
-    double c = 1.0;
-    if (options_.weights == FlattenWeights::kPaper) {
-      const double h = (level(F_(f, 0)) + level(F_(f, 1)) + level(F_(f, 2))) / 3.0;
-      c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
-    }
-    t.area2c *= c;
-    const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d a = s[(k + 1) % 3] - s[k], b = s[(k + 2) % 3] - s[k];
-      const double cot = a.dot(b) / std::abs(a.x() * b.y() - a.y() * b.x());
-      t.w(k) = c * cot;
-      const int i = F_(f, (k + 1) % 3), j = F_(f, (k + 2) % 3);
-      entries.emplace_back(i, i, t.w(k));
-      entries.emplace_back(j, j, t.w(k));
-      entries.emplace_back(i, j, -t.w(k));
-      entries.emplace_back(j, i, -t.w(k));
-    }
-  }
+  // fixed order (so the sums, too, are the same from one assembly to the next): the pattern is
+  // built once, later assemblies add the values into place.
   if (L_.rows() != n) {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(triangles_.size() * 12);
+    for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const int i = F_(f, (k + 1) % 3), j = F_(f, (k + 2) % 3);
+        entries.emplace_back(i, i, 0.0);
+        entries.emplace_back(j, j, 0.0);
+        entries.emplace_back(i, j, 0.0);
+        entries.emplace_back(j, i, 0.0);
+      }
+    }
     L_.resize(n, n);
     L_.setFromTriplets(entries.begin(), entries.end());
     entry_position_.resize(entries.size());
@@ -166,10 +201,17 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
       const int* end = L_.innerIndexPtr() + L_.outerIndexPtr()[col + 1];
       entry_position_[e] = int(std::lower_bound(begin, end, row) - L_.innerIndexPtr());
     }
-  } else {
-    std::fill(L_.valuePtr(), L_.valuePtr() + L_.nonZeros(), 0.0);
-    for (size_t e = 0; e < entries.size(); ++e)
-      L_.valuePtr()[entry_position_[e]] += entries[e].value();
+  }
+  double* values = L_.valuePtr();
+  std::fill(values, values + L_.nonZeros(), 0.0);
+  const int* position = entry_position_.data();
+  for (const Triangle& t : triangles_) {
+    for (int k = 0; k < 3; ++k, position += 4) {
+      values[position[0]] += t.w(k);
+      values[position[1]] += t.w(k);
+      values[position[2]] -= t.w(k);
+      values[position[3]] -= t.w(k);
+    }
   }
 }
 
@@ -210,49 +252,67 @@ double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
                                        const Eigen::MatrixX2d& next) const {
   // det(A + s B) = det A + s (a00 b11 + a11 b00 - a01 b10 - a10 b01) + s^2 det B for the edge
   // matrices A of X and B of next - X; the first positive root bounds the step.
-  double s_max = std::numeric_limits<double>::infinity();
-  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
-    Eigen::Matrix2d A, B;
-    for (int k = 0; k < 2; ++k) {
-      A.col(k) = (X.row(F_(f, k + 1)) - X.row(F_(f, 0))).transpose();
-      B.col(k) = (next.row(F_(f, k + 1)) - next.row(F_(f, 0))).transpose() - A.col(k);
-    }
-    const double c = A.determinant();
-    if (c <= 0) continue;  // already degenerate or flipped: the bound cannot help it
-    const double b = A(0, 0) * B(1, 1) + A(1, 1) * B(0, 0) - A(0, 1) * B(1, 0) - A(1, 0) * B(0, 1);
-    const double a = B.determinant();
-    double root = std::numeric_limits<double>::infinity();
-    if (std::abs(a) < 1e-300) {
-      if (b < 0) root = -c / b;
-    } else {
-      const double disc = b * b - 4 * a * c;
-      if (disc >= 0) {
-        const double q = std::sqrt(disc);
-        for (double s : {(-b - q) / (2 * a), (-b + q) / (2 * a)})
-          if (s > 0) root = std::min(root, s);
+  std::vector<double> roots(size_t(F_.rows()), std::numeric_limits<double>::infinity());
+  parallel_for(roots.size(), [&](size_t begin, size_t end) {
+    for (Eigen::Index f = Eigen::Index(begin); f < Eigen::Index(end); ++f) {
+      Eigen::Matrix2d A, B;
+      for (int k = 0; k < 2; ++k) {
+        A.col(k) = (X.row(F_(f, k + 1)) - X.row(F_(f, 0))).transpose();
+        B.col(k) = (next.row(F_(f, k + 1)) - next.row(F_(f, 0))).transpose() - A.col(k);
+      }
+      const double c = A.determinant();
+      if (c <= 0) continue;  // already degenerate or flipped: the bound cannot help it
+      const double b =
+          A(0, 0) * B(1, 1) + A(1, 1) * B(0, 0) - A(0, 1) * B(1, 0) - A(1, 0) * B(0, 1);
+      const double a = B.determinant();
+      double& root = roots[size_t(f)];
+      if (std::abs(a) < 1e-300) {
+        if (b < 0) root = -c / b;
+      } else {
+        const double disc = b * b - 4 * a * c;
+        if (disc >= 0) {
+          const double q = std::sqrt(disc);
+          for (double s : {(-b - q) / (2 * a), (-b + q) / (2 * a)})
+            if (s > 0) root = std::min(root, s);
+        }
       }
     }
-    s_max = std::min(s_max, root);
-  }
+  });
+  const double s_max = *std::min_element(roots.begin(), roots.end());
   return s_max > 1.0 ? 1.0 : std::min(1.0, 0.9 * s_max);
 }
 
-FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
+FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess) const {
   require(X0.rows() == rest_.rows(), "Flattener::solve",
           "initial guess has " + std::to_string(X0.rows()) + " rows, expected " +
               std::to_string(rest_.rows()));
+  require(guess == nullptr || guess->rows() == X0.rows(), "Flattener::solve",
+          "the second guess must have as many rows as the first");
   FlattenResult r;
   r.X = X0;
   const Eigen::Index n = rest_.rows();
-  std::vector<Eigen::Matrix2d> M(triangles_.size());
+  // Per triangle corner, its share of the global step's right-hand side: for each edge (a, c)
+  // of weight w, w M (s_a - s_c) goes to a and its negative to c. Gathered per vertex below.
+  std::vector<Eigen::Vector2d> share(triangles_.size() * 3);
   std::vector<double> triangle_energy(triangles_.size());
+  std::vector<char> folded(triangles_.size());
   auto local_step = [&]() {
     parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
       for (size_t f = begin; f < end; ++f) {
         const Triangle& t = triangles_[f];
         const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
-        M[f] = target(J);
-        triangle_energy[f] = t.area2c * (J - M[f]).squaredNorm();
+        folded[f] = J.determinant() <= 0;
+        const Eigen::Matrix2d M = target(J);
+        triangle_energy[f] = t.area2c * (J - M).squaredNorm();
+        const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+        Eigen::Vector2d* q = &share[3 * f];
+        q[0] = q[1] = q[2] = Eigen::Vector2d::Zero();
+        for (int k = 0; k < 3; ++k) {
+          const int a = (k + 1) % 3, c = (k + 2) % 3;
+          const Eigen::Vector2d d = t.w(k) * (M * (s[a] - s[c]));
+          q[a] += d;
+          q[c] -= d;
+        }
       }
     });
     return std::accumulate(triangle_energy.begin(), triangle_energy.end(), 0.0);
@@ -264,22 +324,30 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0) const {
   for (const Triangle& t : triangles_) total_weight += t.area2c;
   const double negligible = 1e-20 * total_weight;
   r.energy.push_back(local_step());
+  if (guess) {
+    // The second guess replaces X0 if it is lower in energy and folds no triangle.
+    r.X = *guess;
+    const double e = local_step();
+    if (e < r.energy.back() && std::find(folded.begin(), folded.end(), 1) == folded.end()) {
+      r.energy.back() = e;
+    } else {
+      r.X = X0;
+      local_step();
+    }
+  }
   while (r.iterations < options_.max_iterations) {
     if (r.energy.back() <= negligible) {
       r.converged = true;
       break;
     }
-    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 2);
-    for (size_t f = 0; f < triangles_.size(); ++f) {
-      const Triangle& t = triangles_[f];
-      const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
-      for (int k = 0; k < 3; ++k) {
-        const int a = (k + 1) % 3, c = (k + 2) % 3;
-        const Eigen::Vector2d d = t.w(k) * (M[f] * (s[a] - s[c]));
-        b.row(F_(Eigen::Index(f), a)) += d.transpose();
-        b.row(F_(Eigen::Index(f), c)) -= d.transpose();
+    Eigen::MatrixXd b(n, 2);
+    parallel_for(size_t(n), [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) {
+        Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+        for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
+        b.row(Eigen::Index(v)) = sum.transpose();
       }
-    }
+    });
     Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
       parallel_invoke([&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },

@@ -240,7 +240,9 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
                              (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9;
   if (same_topology) {
     cache_.flattener->reweight(lifted.V, lifted.level);
-    cache_.flat.rowwise() += (r.box.min() - cache_.box.min()).transpose();
+    const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
+    cache_.flat.rowwise() += shift;
+    if (cache_.predicted.rows() == cache_.flat.rows()) cache_.predicted.rowwise() += shift;
   } else {
     cache_.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
                                                    flatten_options());
@@ -250,7 +252,11 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
-  r.flattening = cache_.flattener->solve(cache_.flat);
+  // A lens dragged steadily moves its flattening steadily: the last update's change added again
+  // is the better start when it folds nothing and has the lower energy.
+  const bool predicted = cache_.predicted.rows() == cache_.flat.rows();
+  r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
+  cache_.predicted.resize(0, 2);  // only the first solve of an update has one
   cache_.flat = r.flattening.X;
   r.timings.iterate = ms_since(t);
 
@@ -279,9 +285,13 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
                        cache_.lenses[k].region.size() == lens.region.size();
     h.push_back(lens.zoom == 1 ? 0.0 : known ? cache_.result.heights[k] : initial_height(lens));
   }
+  const Eigen::MatrixX2d before = cache_.flat;
+  if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
   cache_.result = calibrate(
       lenses, h, [&](const std::vector<double>& heights) { return solve_cached(lenses, heights); });
   cache_.lenses = lenses;
+  cache_.change.resize(0, 2);
+  if (before.rows() == cache_.flat.rows()) cache_.change = cache_.flat - before;
   return cache_.result;
 }
 

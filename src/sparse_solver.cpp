@@ -22,14 +22,14 @@ DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed,
     }
   }
   split(A);
+  if (free_.empty()) return;
   if (symmetric_) {
-    llt_ = std::make_unique<Eigen::SimplicialLLT<SpMat>>();
-    llt_->analyzePattern(A_ff_);
+    llt_ = std::make_unique<WindowedCholesky>(A_ff_);
   } else {
     lu_ = std::make_unique<Eigen::SparseLU<SpMat>>();
     lu_->analyzePattern(A_ff_);
+    factorize();
   }
-  factorize();
 }
 
 DirichletSolver::~DirichletSolver() = default;
@@ -79,13 +79,15 @@ void DirichletSolver::split(const SpMat& A) {
   pattern_size_ = A.nonZeros();
 }
 
-void DirichletSolver::factorize() {
+void DirichletSolver::factorize(const std::vector<char>& focus) {
   if (free_.empty()) return;
   if (symmetric_) {
-    llt_->factorize(A_ff_);
-    if (llt_->info() != Eigen::Success)
-      throw SolverError("DirichletSolver: Cholesky factorization failed on a " +
-                        std::to_string(free_.size()) + "-unknown system (not positive definite)");
+    std::vector<char> focus_free;
+    if (!focus.empty()) {
+      focus_free.resize(free_.size());
+      for (size_t r = 0; r < free_.size(); ++r) focus_free[r] = focus[size_t(free_[r])];
+    }
+    llt_->refactorize(A_ff_, focus_free);
   } else {
     lu_->factorize(A_ff_);
     if (lu_->info() != Eigen::Success)
@@ -94,7 +96,9 @@ void DirichletSolver::factorize() {
   }
 }
 
-void DirichletSolver::refactorize(const SpMat& A) {
+void DirichletSolver::refactorize(const SpMat& A, const std::vector<char>& focus) {
+  require(focus.empty() || focus.size() == reduced_.size(), "DirichletSolver::refactorize",
+          "focus must be empty or have one flag per row");
   require(
       size_t(A.rows()) == reduced_.size() && A.cols() == A.rows() && A.nonZeros() == pattern_size_,
       "DirichletSolver::refactorize", "the matrix must keep its size and sparsity pattern");
@@ -108,7 +112,7 @@ void DirichletSolver::refactorize(const SpMat& A) {
       A_fc_.valuePtr()[~d] = values[k];
     }
   }
-  factorize();
+  factorize(focus);
 }
 
 Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,

@@ -15,7 +15,7 @@ class DirichletSolver;
 /// Per-edge weights of the global step.
 enum class FlattenWeights {
   kPaper,  ///< (1 + h_m) A_m cot(theta): h_m the triangle's mean normalized height (level in
-           ///< [0, 1]), A_m its 3D area over the mean 3D area
+           ///< [0, 1]), A_m its 3D area over the mean planar area
   kCotan,  ///< cot(theta): the plain ARAP energy
 };
 
@@ -101,7 +101,8 @@ class Flattener {
 
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
-  FlattenResult solve(const Eigen::MatrixX2d& X0) const;
+  /// `guess` (optional, #V x 2) starts instead when its energy is lower and it folds nothing.
+  FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr) const;
 
   /// E(X) with the metric targets fitted to X (the local step), see above.
   double energy(const Eigen::MatrixX2d& X) const;
@@ -128,6 +129,8 @@ class Flattener {
   std::vector<Triangle> triangles_;
   Eigen::SparseMatrix<double> L_;
   std::vector<int> entry_position_;  // value index in L_ of each assembled entry
+  // The corners (3 f + k) at each vertex v: corner_[corner_start_[v] .. corner_start_[v + 1]).
+  std::vector<int> corner_start_, corner_;
   // One solver for both coordinates, or (sliding) one per coordinate.
   std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
 };

@@ -109,8 +109,10 @@ class GeometricLens {
   Grid grid_;
   struct Cache {
     std::unique_ptr<Flattener> flattener;
-    Eigen::MatrixX2d flat;    // the last flattening, the next update's starting point
-    Eigen::AlignedBox2d box;  // the area it covers
+    Eigen::MatrixX2d flat;       // the last flattening, the next update's starting point
+    Eigen::MatrixX2d change;     // what the last update changed in it (#V x 2, or empty)
+    Eigen::MatrixX2d predicted;  // flat + change: the candidate start of this update's first solve
+    Eigen::AlignedBox2d box;     // the area it covers
     std::vector<Lens> lenses;
     LensResult result;
   } cache_;

@@ -3,19 +3,20 @@
 // times.
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <limits>
 #include <memory>
 #include <vector>
 
+#include "geolens/windowed_cholesky.h"
+
 namespace geolens {
 
 /// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
 /// A_ff x_f = b_f - A_fc x_c. A is n x n; symmetric positive (semi)definite systems use a
-/// sparse Cholesky factorization (Eigen's SimplicialLLT), others a sparse LU. The symbolic
-/// analysis is kept, so refactorize() with new values on the same pattern is cheaper.
+/// sparse Cholesky factorization (WindowedCholesky: after a change confined to a few rows,
+/// only a window around them is refactorized), others a sparse LU (symbolic analysis kept).
 class DirichletSolver {
  public:
   /// @param A       n x n system matrix
@@ -31,8 +32,11 @@ class DirichletSolver {
 
   /// New values for A on the same sparsity pattern (same stored entries, in the same order) and
   /// the same fixed set: the values are copied into place and only the numeric factorization is
-  /// redone. Throws InvalidInput if the pattern differs, SolverError as the constructor.
-  void refactorize(const Eigen::SparseMatrix<double>& A);
+  /// redone (for Cholesky, only its window when the changed values stay in it). Throws InvalidInput
+  /// if the pattern differs, SolverError as the constructor.
+  /// @param focus  optional n flags: the rows later changes will be around (see
+  ///                WindowedCholesky::refactorize); fixed rows are ignored
+  void refactorize(const Eigen::SparseMatrix<double>& A, const std::vector<char>& focus = {});
 
   /// @param b        n x k right-hand sides (rows of fixed entries ignored)
   /// @param x_fixed  n x k values; only the rows of fixed entries are read
@@ -41,9 +45,12 @@ class DirichletSolver {
 
   int free_count() const { return int(free_.size()); }
 
+  /// The Cholesky factorization (null for LU or when every entry is fixed).
+  const WindowedCholesky* cholesky() const { return llt_.get(); }
+
  private:
   void split(const Eigen::SparseMatrix<double>& A);
-  void factorize();
+  void factorize(const std::vector<char>& focus = {});
 
   bool symmetric_;
   std::vector<int> free_;             // reduced index -> full index
@@ -55,7 +62,7 @@ class DirichletSolver {
   static constexpr int kDropped = std::numeric_limits<int>::min();
   std::vector<int> destination_;
   Eigen::Index pattern_size_ = 0;
-  std::unique_ptr<Eigen::SimplicialLLT<Eigen::SparseMatrix<double>>> llt_;
+  std::unique_ptr<WindowedCholesky> llt_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
 };
 
