@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 
 #include "geolens/errors.h"
@@ -217,20 +218,21 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
 
 Flattener::~Flattener() = default;
 
-Eigen::Matrix2d Flattener::jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const {
+inline Eigen::Matrix2d Flattener::jacobian(const Triangle& t, int f,
+                                           const Eigen::MatrixX2d& X) const {
   Eigen::Matrix2d E;
   E.col(0) = (X.row(F_(f, 1)) - X.row(F_(f, 0))).transpose();
   E.col(1) = (X.row(F_(f, 2)) - X.row(F_(f, 0))).transpose();
   return E * t.S_inv;
 }
 
-Eigen::Matrix2d Flattener::target(const Eigen::Matrix2d& J) const {
+inline Eigen::Matrix2d Flattener::target(const Eigen::Matrix2d& J) const {
   // With J = U diag(s1, s2) V^T (signed SVD), the closest rotation R = U V^T is [E -H; H E] / Q
   // for E = (J00 + J11) / 2, H = (J10 - J01) / 2, Q = |(E, H)| = (s1 + s2) / 2 (svd2.cpp), so
   // no SVD is needed: the paper's U diag(alpha (s - 1) + 1) V^T is (1 - alpha) R + alpha J, and
   // the spectrum's target is ((1 - alpha) + alpha Q) R.
   const double E = 0.5 * (J(0, 0) + J(1, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
-  const double Q = std::hypot(E, H);
+  const double Q = std::sqrt(E * E + H * H);  // no overflow at pixel scales; hypot is slow
   Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
   if (Q > 0) R << E / Q, -H / Q, H / Q, E / Q;
   const double a = options_.alpha;
@@ -252,33 +254,40 @@ double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
                                        const Eigen::MatrixX2d& next) const {
   // det(A + s B) = det A + s (a00 b11 + a11 b00 - a01 b10 - a10 b01) + s^2 det B for the edge
   // matrices A of X and B of next - X; the first positive root bounds the step.
-  std::vector<double> roots(size_t(F_.rows()), std::numeric_limits<double>::infinity());
-  parallel_for(roots.size(), [&](size_t begin, size_t end) {
-    for (Eigen::Index f = Eigen::Index(begin); f < Eigen::Index(end); ++f) {
-      Eigen::Matrix2d A, B;
-      for (int k = 0; k < 2; ++k) {
-        A.col(k) = (X.row(F_(f, k + 1)) - X.row(F_(f, 0))).transpose();
-        B.col(k) = (next.row(F_(f, k + 1)) - next.row(F_(f, 0))).transpose() - A.col(k);
-      }
-      const double c = A.determinant();
-      if (c <= 0) continue;  // already degenerate or flipped: the bound cannot help it
-      const double b =
-          A(0, 0) * B(1, 1) + A(1, 1) * B(0, 0) - A(0, 1) * B(1, 0) - A(1, 0) * B(0, 1);
-      const double a = B.determinant();
-      double& root = roots[size_t(f)];
-      if (std::abs(a) < 1e-300) {
-        if (b < 0) root = -c / b;
-      } else {
-        const double disc = b * b - 4 * a * c;
-        if (disc >= 0) {
-          const double q = std::sqrt(disc);
-          for (double s : {(-b - q) / (2 * a), (-b + q) / (2 * a)})
-            if (s > 0) root = std::min(root, s);
+  double s_max = std::numeric_limits<double>::infinity();
+  std::mutex s_max_mutex;
+  parallel_for(
+      size_t(F_.rows()),
+      [&](size_t begin, size_t end) {
+        double chunk_max = std::numeric_limits<double>::infinity();
+        for (Eigen::Index f = Eigen::Index(begin); f < Eigen::Index(end); ++f) {
+          Eigen::Matrix2d A, B;
+          for (int k = 0; k < 2; ++k) {
+            A.col(k) = (X.row(F_(f, k + 1)) - X.row(F_(f, 0))).transpose();
+            B.col(k) = (next.row(F_(f, k + 1)) - next.row(F_(f, 0))).transpose() - A.col(k);
+          }
+          const double c = A.determinant();
+          if (c <= 0) continue;  // already degenerate or flipped: the bound cannot help it
+          const double b =
+              A(0, 0) * B(1, 1) + A(1, 1) * B(0, 0) - A(0, 1) * B(1, 0) - A(1, 0) * B(0, 1);
+          const double a = B.determinant();
+          double root = std::numeric_limits<double>::infinity();
+          if (std::abs(a) < 1e-300) {
+            if (b < 0) root = -c / b;
+          } else {
+            const double disc = b * b - 4 * a * c;
+            if (disc >= 0) {
+              const double q = std::sqrt(disc);
+              for (double s : {(-b - q) / (2 * a), (-b + q) / (2 * a)})
+                if (s > 0) root = std::min(root, s);
+            }
+          }
+          chunk_max = std::min(chunk_max, root);
         }
-      }
-    }
-  });
-  const double s_max = *std::min_element(roots.begin(), roots.end());
+        const std::lock_guard<std::mutex> lock(s_max_mutex);
+        s_max = std::min(s_max, chunk_max);
+      },
+      16384);  // a few dozen flops per triangle: threads only for large meshes
   return s_max > 1.0 ? 1.0 : std::min(1.0, 0.9 * s_max);
 }
 
@@ -341,13 +350,11 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
       break;
     }
     Eigen::MatrixXd b(n, 2);
-    parallel_for(size_t(n), [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; ++v) {
-        Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-        for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
-        b.row(Eigen::Index(v)) = sum.transpose();
-      }
-    });
+    for (size_t v = 0; v < size_t(n); ++v) {  // a few additions each: not worth a thread
+      Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+      for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
+      b.row(Eigen::Index(v)) = sum.transpose();
+    }
     Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
       parallel_invoke([&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
