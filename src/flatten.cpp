@@ -39,6 +39,9 @@ Boundary parse_boundary(const std::string& name) {
 std::string to_string(FlattenWeights weights) {
   return weights == FlattenWeights::kPaper ? "paper" : "cotan";
 }
+std::string to_string(Standard standard) {
+  return standard == Standard::kLifted ? "lifted" : "scaled";
+}
 std::string to_string(Metric metric) { return metric == Metric::kPaper ? "paper" : "spectrum"; }
 std::string to_string(Boundary boundary) {
   switch (boundary) {
@@ -65,7 +68,7 @@ void validate(const FlattenOptions& o) {
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
-                     const FlattenOptions& options)
+                     const FlattenOptions& options, const Eigen::VectorXd& log_scale)
     : F_(F), rest_(V3.leftCols<2>()), options_(options) {
   validate(options);
   const Eigen::Index n = V3.rows();
@@ -79,7 +82,7 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
   for (Eigen::Index k = 0; k < F.size(); ++k)
     corner_[size_t(fill[size_t(F(k / 3, k % 3))]++)] = int(k);
-  assemble(V3, level);
+  assemble(V3, level, log_scale);
 
   std::vector<char> fix_x(size_t(n), 0), fix_y(size_t(n), 0);
   for (size_t i = 0; i < size_t(n); ++i) {
@@ -107,12 +110,13 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   }
 }
 
-void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level) {
+void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
+                         const Eigen::VectorXd& log_scale) {
   require(V3.rows() == rest_.rows(), "Flattener::reweight",
           "the lifted mesh has " + std::to_string(V3.rows()) + " vertices, expected " +
               std::to_string(rest_.rows()));
   rest_ = V3.leftCols<2>();
-  assemble(V3, level);
+  assemble(V3, level, log_scale);
   // The rows the lift touches (a triangle with a lifted corner changes all three): where the
   // next lift's changes will be, for the factorizations' windows.
   std::vector<char> lifted(size_t(V3.rows()), 0);
@@ -128,9 +132,13 @@ void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   }
 }
 
-void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level) {
+void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
+                         const Eigen::VectorXd& log_scale) {
   const Eigen::Index n = V3.rows();
   require(level.size() == n, "Flattener", "level must have one entry per vertex");
+  const bool scaled = options_.standard == Standard::kScaled;
+  require(!scaled || (log_scale.size() == n && log_scale.allFinite()), "Flattener",
+          "scaled standard triangles need one finite log scale per vertex");
   // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
   triangles_.resize(size_t(F_.rows()));
   std::vector<double> planar_area(triangles_.size());
@@ -141,20 +149,30 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
       const Eigen::Vector3d e1 = V3.row(F_(fi, 1)) - V3.row(F_(fi, 0));
       const Eigen::Vector3d e2 = V3.row(F_(fi, 2)) - V3.row(F_(fi, 0));
       const double l1 = e1.norm(), cross = e1.cross(e2).norm();
-      if (!(l1 > 0 && cross > 0)) {
+      const double planar_cross = e1.x() * e2.y() - e1.y() * e2.x();
+      if (!(l1 > 0 && cross > 0) || (scaled && !(planar_cross > 0))) {
         degenerate[f] = 1;
         continue;
       }
       Triangle& t = triangles_[f];
-      t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
+      if (scaled) {
+        const double s =
+            std::exp((log_scale(F_(fi, 0)) + log_scale(F_(fi, 1)) + log_scale(F_(fi, 2))) / 3.0);
+        t.S << e1.x(), e2.x(), e1.y(), e2.y();
+        t.S *= s;
+        t.area2c = s * s * planar_cross;  // 2 A, times c_t below
+      } else {
+        t.S << l1, e1.dot(e2) / l1, 0, cross / l1;
+        t.area2c = cross;
+      }
       t.S_inv = t.S.inverse();
-      t.area2c = cross;  // 2 A, times c_t below
-      planar_area[f] = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+      planar_area[f] = 0.5 * std::abs(planar_cross);
     }
   });
   const auto bad = std::find(degenerate.begin(), degenerate.end(), 1);
   require(bad == degenerate.end(), "Flattener",
-          "triangle " + std::to_string(bad - degenerate.begin()) + " is degenerate in 3D");
+          "triangle " + std::to_string(bad - degenerate.begin()) +
+              (scaled ? " is degenerate or clockwise in the plane" : " is degenerate in 3D"));
   // The paper weights' area normalization: any constant scales E without moving its minimum;
   // the planar mean keeps the weights of unlifted triangles bit-identical from lift to lift,
   // so a moved lens changes only the rows it lifts (WindowedCholesky relies on it).
@@ -382,8 +400,8 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
 
 FlattenResult flatten(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                       const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
-                      const FlattenOptions& options) {
-  return Flattener(V3, F, level, sides, options).solve(V3.leftCols<2>());
+                      const FlattenOptions& options, const Eigen::VectorXd& log_scale) {
+  return Flattener(V3, F, level, sides, options, log_scale).solve(V3.leftCols<2>());
 }
 
 }  // namespace geolens

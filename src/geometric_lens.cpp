@@ -17,15 +17,21 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kMaxHeightOverSize = 20.0;
+// The field model's height over size is the peak's log zoom: at most 64x, the square of the
+// largest zoom a lens may ask for (the context's resistance takes the rest).
+const double kMaxFieldLogZoom = 2 * std::log(8.0);
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 // First guess of the centre height for a zoom: h0 / r per unit of log(zoom), measured with the
 // default options (cotan texture, paper weights) on a 100x100 grid at zoom 1.5 to 3.
-double initial_height(const Lens& lens) {
-  const double per_log_zoom[] = {1.08, 2.3, 1.95};  // gaussian, sphere, mesa
-  return lens.region.size() * per_log_zoom[int(lens.profile)] * std::log(lens.zoom);
+double initial_height(const Lens& lens, LensModel model) {
+  // Measured with the defaults: the lift per profile (gaussian, sphere, mesa), the field's
+  // height over size is its peak log zoom, which the context's resistance lowers by about 1.7.
+  const double per_log_zoom[] = {1.08, 2.3, 1.95};
+  const double c = model == LensModel::kField ? 1.7 : per_log_zoom[int(lens.profile)];
+  return lens.region.size() * c * std::log(lens.zoom);
 }
 
 // Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
@@ -100,6 +106,26 @@ Extent parse_extent(const std::string& name) {
 
 std::string to_string(Extent extent) { return extent == Extent::kGlobal ? "global" : "local"; }
 
+LensModel parse_lens_model(const std::string& name) {
+  if (name == "lift") return LensModel::kLift;
+  if (name == "field") return LensModel::kField;
+  if (name == "auto") return LensModel::kAuto;
+  throw InvalidInput("parse_lens_model: unknown lens model '" + name +
+                     "' (expected lift, field or auto)");
+}
+
+std::string to_string(LensModel model) {
+  switch (model) {
+    case LensModel::kLift:
+      return "lift";
+    case LensModel::kField:
+      return "field";
+    case LensModel::kAuto:
+      return "auto";
+  }
+  return "?";
+}
+
 void validate(const LensOptions& o) {
   require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
@@ -139,9 +165,22 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
   return patch;
 }
 
-FlattenOptions GeometricLens::flatten_options() const {
+LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
+  if (options_.model != LensModel::kAuto) return options_.model;
+  for (const Lens& lens : lenses)
+    if (lens.region.kind() != RegionKind::kCircle) return LensModel::kField;
+  return LensModel::kLift;
+}
+
+FlattenOptions GeometricLens::flatten_options(LensModel model) const {
   FlattenOptions o = options_.flatten;
   if (options_.extent == Extent::kLocal) o.boundary = Boundary::kFixed;
+  if (model == LensModel::kField) {
+    // The rest areas already weigh the magnified triangles; the paper's (1 + h) A weights on
+    // top made the focus so stiff that the context folded into a band one triangle wide.
+    o.standard = Standard::kScaled;
+    o.weights = FlattenWeights::kCotan;
+  }
   return o;
 }
 
@@ -151,6 +190,7 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
                                        const std::vector<double>& heights, const PlanarMesh& mesh,
                                        const Eigen::AlignedBox2d& box, Clock::time_point start,
                                        LensResult& r) const {
+  r.model = model_for(lenses);
   r.heights = heights;
   r.mesh = mesh;
   r.box = box;
@@ -162,8 +202,12 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
   return lifted;
 }
 
-// Texture coordinates of the lifted mesh, with the fold fallback.
+// Texture coordinates of the lifted mesh, with the fold fallback; the field model keeps them.
 void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
+  if (r.model == LensModel::kField) {
+    r.warp.source = r.mesh.V;
+    return;
+  }
   std::vector<char> fixed(lifted.inside.size());
   for (size_t i = 0; i < fixed.size(); ++i) fixed[i] = !lifted.inside[i] || r.mesh.sides[i] != 0;
   r.warp.source = harmonic_texture(lifted.V, r.mesh.F, fixed, r.mesh.V, options_.texture);
@@ -181,7 +225,7 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
   r.lifted = lifted.V;
   r.flat = r.flattening.X;
   r.warp.F = r.mesh.F;
-  r.warp.screen = frame(r.flat, flatten_options().boundary, width_, height_);
+  r.warp.screen = frame(r.flat, flatten_options(r.model).boundary, width_, height_);
   r.warp.screen_width = int(std::lround(width_));
   r.warp.screen_height = int(std::lround(height_));
   if (options_.extent == Extent::kLocal) add_identity_frame(r.warp, r.mesh, r.box, width_, height_);
@@ -211,7 +255,8 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r);
 
   auto t = Clock::now();
-  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options());
+  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
+                            flatten_options(r.model), lifted.log_zoom);
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
@@ -238,17 +283,19 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   // A local patch has the same topology wherever it is, as long as its size is unchanged.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
                              (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9;
-  if (same_topology) {
-    cache_.flattener->reweight(lifted.V, lifted.level);
+  if (same_topology && cache_.model == r.model) {
+    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom);
     const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
     cache_.flat.rowwise() += shift;
     if (cache_.predicted.rows() == cache_.flat.rows()) cache_.predicted.rowwise() += shift;
   } else {
     cache_.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                                                   flatten_options());
+                                                   flatten_options(r.model), lifted.log_zoom);
     cache_.flat = r.mesh.V;
+    cache_.predicted.resize(0, 2);
   }
   cache_.box = r.box;
+  cache_.model = r.model;
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
@@ -267,23 +314,28 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
 
 LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
   std::vector<double> h;
-  for (const Lens& lens : lenses) h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens));
+  const LensModel model = model_for(lenses);
+  for (const Lens& lens : lenses) h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model));
   return calibrate(lenses, h, [&](const std::vector<double>& heights) {
     return solve_with_heights(lenses, heights);
   });
 }
 
 const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
-  // Start from the heights found last time for a lens of the same shape, size and zoom: after a
-  // move, one solve usually confirms them.
+  // Start from the heights found last time for a lens of the same shape, size and zoom (and
+  // model): after a move, one solve usually confirms them.
+  const LensModel model = model_for(lenses);
   std::vector<double> h;
   for (size_t k = 0; k < lenses.size(); ++k) {
     const Lens& lens = lenses[k];
-    const bool known = k < cache_.lenses.size() && cache_.lenses[k].zoom == lens.zoom &&
+    const bool known = k < cache_.lenses.size() && cache_.result.model == model &&
+                       cache_.lenses[k].zoom == lens.zoom &&
                        cache_.lenses[k].profile == lens.profile &&
                        cache_.lenses[k].region.kind() == lens.region.kind() &&
                        cache_.lenses[k].region.size() == lens.region.size();
-    h.push_back(lens.zoom == 1 ? 0.0 : known ? cache_.result.heights[k] : initial_height(lens));
+    h.push_back(lens.zoom == 1 ? 0.0
+                : known        ? cache_.result.heights[k]
+                               : initial_height(lens, model));
   }
   const Eigen::MatrixX2d before = cache_.flat;
   if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
@@ -305,6 +357,7 @@ LensResult GeometricLens::calibrate(
   std::vector<double> lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
   std::vector<int> last_side(n, 0);
   for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
+  const double cap = model_for(lenses) == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize;
   StageTimings sum;
   LensResult best;
   double best_miss = std::numeric_limits<double>::infinity();
@@ -344,7 +397,7 @@ LensResult GeometricLens::calibrate(
         h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
       }
       // Taller bumps only fold: a lens that has not reached its zoom at 20 sizes never will.
-      h[k] = std::min(h[k], kMaxHeightOverSize * lenses[k].region.size());
+      h[k] = std::min(h[k], cap * lenses[k].region.size());
     }
     if (miss < best_miss) {
       best_miss = miss;

@@ -42,17 +42,22 @@ Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
   out.V.leftCols<2>() = V;
   out.V.col(2).setZero();
   out.level = Eigen::VectorXd::Zero(n);
+  out.log_zoom = Eigen::VectorXd::Zero(n);
   out.inside.assign(size_t(n), 0);
   for (size_t k = 0; k < lenses.size(); ++k) {
     require(std::isfinite(heights[k]) && heights[k] >= 0, "lift",
             "height must be finite and >= 0, got " + std::to_string(heights[k]));
     for (Eigen::Index i = 0; i < n; ++i) {
       const Eigen::Vector2d p = V.row(i).transpose();
-      if (lenses[k].region.depth(p) <= 0) continue;
-      const double level = lens_height(lenses[k], 1.0, p);
+      const double depth = lenses[k].region.depth(p);
+      if (depth <= 0) continue;
+      const Region& region = lenses[k].region;
+      const double level =  // lens_height / h0, without computing the depth again
+          region.thickness(p) / region.size() * profile_value(lenses[k].profile, depth);
       out.inside[size_t(i)] = 1;
       out.level(i) = std::max(out.level(i), level);
       out.V(i, 2) = std::max(out.V(i, 2), heights[k] * level);
+      out.log_zoom(i) = std::max(out.log_zoom(i), heights[k] * level / region.size());
     }
   }
   return out;

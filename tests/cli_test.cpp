@@ -88,6 +88,7 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_rejected("magnify " + in + out + " --lens square:50,50,20", "circle:");
   expect_rejected("magnify " + in + out, "--lens");
   expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --profile cone", "cone");
+  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --model ridge", "ridge");
   expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --size 0x10", "--size");
 }
 
@@ -126,7 +127,8 @@ TEST_F(Cli, MaskOfARealObjectReachesItsZoom) {
   ASSERT_EQ(s.at("lenses").size(), 1u);
   const nlohmann::json& lens = s.at("lenses")[0];
   EXPECT_EQ(lens.at("kind"), "mask");
-  EXPECT_NEAR(lens.at("zoom_measured").get<double>(), 2.0, 0.3);
+  EXPECT_EQ(s.at("model"), "field");  // auto: a mask is not a circle
+  EXPECT_NEAR(lens.at("zoom_measured").get<double>(), 2.0, 0.1);
   EXPECT_EQ(s.at("flipped").get<int>(), 0);
   // The bounding box is the rim's: inside the image, wider than tall.
   const std::vector<double> box = lens.at("bbox");
@@ -166,6 +168,8 @@ TEST_F(Cli, StatsHoldEveryField) {
   EXPECT_GT(s.at("triangles").get<int>(), 0);
   EXPECT_EQ(s.at("energy").size(), s.at("iterations").get<size_t>() + 1);
   EXPECT_EQ(s.at("flipped").get<int>(), 0);
+  EXPECT_EQ(s.at("model"), "lift");  // auto: circles only
+  EXPECT_EQ(s.at("options").at("model"), "auto");
   ASSERT_EQ(s.at("lenses").size(), 2u);
   for (const auto& lens : s.at("lenses")) {
     EXPECT_EQ(lens.at("center").size(), 2u);

@@ -69,6 +69,11 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
   c.add_option("--zoom", a.zoom, "zoom of lenses that give none, in [1, 8]")->capture_default_str();
   c.add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
       ->capture_default_str();
+  c.add_option("--model", a.model,
+               "lift (the paper's: lifted triangles, harmonic texture), field (the lift as a "
+               "zoom field, any shape magnified in every direction) or auto (lift for circles "
+               "only, else field)")
+      ->capture_default_str();
   c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
       ->capture_default_str();
   c.add_option("--subdivide", a.subdivide,
@@ -78,8 +83,10 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
   c.add_option("--alpha", a.alpha, "metric blend: paper [0, 1), spectrum [0, 1]")
       ->capture_default_str();
-  c.add_option("--weights", a.weights, "flattening weights: paper or cotan")->capture_default_str();
-  c.add_option("--texture", a.texture, "texture map weights: cotan or mvc")->capture_default_str();
+  c.add_option("--weights", a.weights, "flattening weights of the lift model: paper or cotan")
+      ->capture_default_str();
+  c.add_option("--texture", a.texture, "texture map weights of the lift model: cotan or mvc")
+      ->capture_default_str();
   c.add_option("--boundary", a.boundary, "image border: sliding, fixed or free")
       ->capture_default_str();
   c.add_option("--extent", a.extent,
@@ -100,6 +107,7 @@ LensOptions parse_options(const LensArgs& a) {
   options.subdivision.max_levels = a.subdivide;
   options.extent = parse_extent(a.extent);
   options.extent_factor = a.extent_factor;
+  options.model = parse_lens_model(a.model);
   options.texture = parse_texture_weights(a.texture);
   options.flatten.weights = parse_flatten_weights(a.weights);
   options.flatten.metric = parse_metric(a.metric);

@@ -15,7 +15,7 @@ struct LensArgs {
   std::vector<std::string> lenses;
   double zoom = 2.0;
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
-              boundary = "sliding", extent = "global";
+              model = "auto", boundary = "sliding", extent = "global";
   double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5;
   int mesh = 100, max_iterations = 100, subdivide = 0;
 };

@@ -15,7 +15,9 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
   stats["bounded_steps"] = result.flattening.bounded_steps;
   stats["texture_fallback"] = result.texture_fallback;
   stats["flipped"] = summary.flipped;
+  stats["model"] = to_string(result.model);
   stats["options"] = {{"mesh", options.mesh},
+                      {"model", to_string(options.model)},
                       {"subdivide", options.subdivision.max_levels},
                       {"extent", to_string(options.extent)},
                       {"extent_factor", options.extent_factor},

@@ -32,6 +32,14 @@ enum class Metric {
   kSpectrum,
 };
 
+/// The shape each triangle is asked to keep (its "standard triangle").
+enum class Standard {
+  kLifted,  ///< the lifted 3D triangle laid flat isometrically (paper Fig. 4)
+  /// the planar triangle scaled by exp of the mean `log_scale` of its corners: a prescribed
+  /// isotropic magnification (LensModel::kField)
+  kScaled,
+};
+
 /// Which image-border conditions the flattened mesh obeys.
 enum class Boundary {
   kSliding,  ///< border vertices slide along their own side, corners fixed
@@ -43,6 +51,7 @@ FlattenWeights parse_flatten_weights(const std::string& name);  ///< "paper" | "
 Metric parse_metric(const std::string& name);                   ///< "paper" | "spectrum"
 Boundary parse_boundary(const std::string& name);               ///< "sliding" | "fixed" | "free"
 std::string to_string(FlattenWeights weights);
+std::string to_string(Standard standard);
 std::string to_string(Metric metric);
 std::string to_string(Boundary boundary);
 
@@ -52,6 +61,7 @@ struct FlattenOptions {
   double alpha = 0.0;  ///< metric blend: [0, 1) for kPaper (the paper uses [0, 0.5]), [0, 1]
                        ///< for kSpectrum
   Boundary boundary = Boundary::kSliding;
+  Standard standard = Standard::kLifted;
   double tolerance = 1e-3;   ///< stop when |E_k - E_k-1| <= tolerance * E_k-1 (paper: 0.1%)
   int max_iterations = 100;  ///< cap on global steps, >= 1
   /// Bound each step so no triangle changes orientation: the global step's result X' is taken
@@ -73,8 +83,9 @@ struct FlattenResult {
 };
 
 /// The local/global flattener of one lifted mesh. Construction computes the standard triangles
-/// (each 3D triangle laid isometrically in the plane, paper Fig. 4), the weights, the global
-/// matrix L and its sparse Cholesky factorization; solve() then iterates.
+/// (each 3D triangle laid isometrically in the plane, paper Fig. 4, or the planar triangle
+/// scaled, see Standard), the weights, the global matrix L and its sparse Cholesky
+/// factorization; solve() then iterates.
 ///
 /// Energy: E(X) = sum_t sum_{edges (i,j) of t} w_ij ||(x_i - x_j) - M_t (s_i - s_j)||^2
 ///              = sum_t c_t 2 A_t ||J_t - M_t||_F^2,
@@ -88,8 +99,11 @@ class Flattener {
   /// @param F      #F x 3 triangles
   /// @param level  #V normalized heights in [0, 1] (for the paper weights)
   /// @param sides  #V Side flags of the grid (border vertices), see grid.h
+  /// @param log_scale  #V natural log of the magnification asked at each vertex (Standard::kScaled
+  ///                   only; empty otherwise)
   Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F, const Eigen::VectorXd& level,
-            const std::vector<uint8_t>& sides, const FlattenOptions& options);
+            const std::vector<uint8_t>& sides, const FlattenOptions& options,
+            const Eigen::VectorXd& log_scale = Eigen::VectorXd());
   ~Flattener();
 
   /// Refits the flattener to a new lift of the same mesh (same faces, sides, options): the
@@ -97,7 +111,9 @@ class Flattener {
   /// the kept symbolic analysis. For a lens that moved.
   /// @param V3     #V x 3 lifted vertices, pixels (x, y also become the fixed values)
   /// @param level  #V normalized heights in [0, 1]
-  void reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level);
+  /// @param log_scale  as in the constructor
+  void reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
+                const Eigen::VectorXd& log_scale = Eigen::VectorXd());
 
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
@@ -117,7 +133,8 @@ class Flattener {
     double area2c;          // 2 A_t c_t: the triangle's weight in ||J - M||_F^2
     Eigen::Vector3d w;      // w for the edge opposite each corner
   };
-  void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level);
+  void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
+                const Eigen::VectorXd& log_scale);
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
   // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
@@ -138,6 +155,7 @@ class Flattener {
 /// One-off: builds a Flattener and solves from the projection of V3.
 FlattenResult flatten(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                       const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
-                      const FlattenOptions& options);
+                      const FlattenOptions& options,
+                      const Eigen::VectorXd& log_scale = Eigen::VectorXd());
 
 }  // namespace geolens

@@ -29,10 +29,26 @@ enum class Extent {
 Extent parse_extent(const std::string& name);  ///< "global" | "local"
 std::string to_string(Extent extent);
 
+/// How the lift becomes a magnification (docs/design.md, "Lens models").
+enum class LensModel {
+  /// The paper's: the flattening keeps the shapes of the lifted triangles and the texture is
+  /// re-mapped harmonically onto the bump. A long region's lift is a ridge, magnified across
+  /// only.
+  kLift,
+  /// The lift read as a field of log magnification (Lifted::log_zoom): the flattening keeps
+  /// each planar triangle's shape scaled by it, the texture is not re-mapped. Magnifies a
+  /// region of any shape in every direction, its thin parts as much as its wide ones.
+  kField,
+  kAuto,  ///< kLift when every lens is a circle, else kField
+};
+LensModel parse_lens_model(const std::string& name);  ///< "lift" | "field" | "auto"
+std::string to_string(LensModel model);
+
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
   Extent extent = Extent::kGlobal;
   double extent_factor = 2.5;  ///< local patch half-side over the lens size (radius), > 1
+  LensModel model = LensModel::kAuto;
   TextureWeights texture = TextureWeights::kCotan;
   SubdivisionOptions subdivision;
   FlattenOptions flatten;
@@ -51,14 +67,15 @@ struct StageTimings {
 };
 
 struct LensResult {
-  WarpMesh warp;                      ///< source = texture coordinates, screen = framed flattening
-  PlanarMesh mesh;                    ///< the (subdivided) planar mesh the lift was built on
-  Eigen::AlignedBox2d box;            ///< the solved area: the image, or the local patch
-  Eigen::MatrixX3d lifted;            ///< #V x 3 the lifted mesh of the final solve, pixels
-  Eigen::MatrixX2d flat;              ///< #V x 2 the flattening before framing, pixels
-  FlattenResult flattening;           ///< iterations and energies of the final solve
-  std::vector<double> heights;        ///< per lens: calibrated centre height h0, pixels
-  std::vector<double> zoom_measured;  ///< per lens: magnification at its region's peak
+  LensModel model = LensModel::kLift;  ///< the model used (kAuto resolved)
+  WarpMesh warp;                       ///< source = texture coordinates, screen = framed flattening
+  PlanarMesh mesh;                     ///< the (subdivided) planar mesh the lift was built on
+  Eigen::AlignedBox2d box;             ///< the solved area: the image, or the local patch
+  Eigen::MatrixX3d lifted;             ///< #V x 3 the lifted mesh of the final solve, pixels
+  Eigen::MatrixX2d flat;               ///< #V x 2 the flattening before framing, pixels
+  FlattenResult flattening;            ///< iterations and energies of the final solve
+  std::vector<double> heights;         ///< per lens: calibrated centre height h0, pixels
+  std::vector<double> zoom_measured;   ///< per lens: magnification at its region's peak
   /// The cotan texture map folded and was redone with non-negative weights (cotan+).
   bool texture_fallback = false;
   int solves = 0;  ///< full solves made by the calibration
@@ -94,7 +111,8 @@ class GeometricLens {
 
  private:
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
-  FlattenOptions flatten_options() const;
+  LensModel model_for(const std::vector<Lens>& lenses) const;
+  FlattenOptions flatten_options(LensModel model) const;
   Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
                           const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
                           std::chrono::steady_clock::time_point start, LensResult& r) const;
@@ -113,6 +131,7 @@ class GeometricLens {
     Eigen::MatrixX2d change;     // what the last update changed in it (#V x 2, or empty)
     Eigen::MatrixX2d predicted;  // flat + change: the candidate start of this update's first solve
     Eigen::AlignedBox2d box;     // the area it covers
+    LensModel model = LensModel::kAuto;  // the flattener's
     std::vector<Lens> lenses;
     LensResult result;
   } cache_;

@@ -25,6 +25,11 @@ struct Lifted {
   Eigen::MatrixX3d V;        ///< #V x 3: x, y as given, z = max over lenses of their height, pixels
   Eigen::VectorXd level;     ///< #V: max over lenses of height / h0, in [0, 1]
   std::vector<char> inside;  ///< #V: 1 where the vertex lies strictly inside some ROI
+  /// #V: the lift read as a magnification field (LensModel::kField): max over lenses of
+  /// height / size, the natural log of the zoom the vertex asks for. Like the height, it rises
+  /// from 0 on the boundary at the same rate in every part of a region, so a part of half the
+  /// region's largest half-width asks for the square root of its peak zoom.
+  Eigen::VectorXd log_zoom;
 };
 
 /// Height of one lens at p (pixels): h0 * thickness(p) / size() * profile(depth(p)), see roi.h.
