@@ -52,20 +52,29 @@ void check_output_path(const std::string& path, const std::string& input, const 
   require(!same_file(input, path), option, "'" + path + "' is the input file");
 }
 
-// Draws a 3-pixel outline of each circle lens (scaled to the image) in red.
+// Draws the boundary of every lens region (scaled to the image), about 3 pixels wide, in red
+// (grey on grey images): the pixels with a pixel of the other side within 1 pixel.
 void outline_lenses(Image& image, const std::vector<Lens>& lenses, double scale_x, double scale_y) {
+  const int w = image.width, h = image.height;
+  std::vector<char> inside(size_t(w) * size_t(h));
+  const uint8_t red[4] = {220, 30, 30, 255};
   for (const Lens& lens : lenses) {
-    if (lens.region.kind() != RegionKind::kCircle) continue;
-    const double r = lens.region.size() * std::sqrt(scale_x * scale_y);
-    const int steps = int(2 * M_PI * r * 2) + 8;
-    for (int s = 0; s < steps; ++s) {
-      const double a = 2 * M_PI * s / steps;
-      for (double dr = -1; dr <= 1; dr += 1) {
-        const int x = int(lens.region.peak().x() * scale_x + (r + dr) * std::cos(a));
-        const int y = int(lens.region.peak().y() * scale_y + (r + dr) * std::sin(a));
-        if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        inside[size_t(y) * size_t(w) + size_t(x)] =
+            lens.region.depth({(x + 0.5) / scale_x, (y + 0.5) / scale_y}) > 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const char here = inside[size_t(y) * size_t(w) + size_t(x)];
+        bool edge = false;
+        for (int dy = -1; dy <= 1 && !edge; ++dy)
+          for (int dx = -1; dx <= 1 && !edge; ++dx) {
+            const int u = x + dx, v = y + dy;
+            edge = u >= 0 && v >= 0 && u < w && v < h &&
+                   inside[size_t(v) * size_t(w) + size_t(u)] != here;
+          }
+        if (!edge) continue;
         uint8_t* p = image.at(x, y);
-        const uint8_t red[4] = {220, 30, 30, 255};
         for (int c = 0; c < image.channels; ++c) p[c] = image.channels < 3 ? 80 : red[c];
       }
     }
