@@ -103,10 +103,10 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
               std::find(fix_y.begin(), fix_y.end(), 1) != fix_y.end(),
           "Flattener", "the boundary mode fixes no vertex: are the grid sides set?");
   if (fix_x == fix_y) {
-    solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true);
+    solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x);
   } else {
-    parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x, true); },
-                    [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y, true); });
+    parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x); },
+                    [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y); });
   }
 }
 

@@ -24,11 +24,11 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// First guess of the centre height for a zoom: h0 / r per unit of log(zoom), measured with the
-// default options (cotan texture, paper weights) on a 100x100 grid at zoom 1.5 to 3.
+// First guess of the peak height for a zoom: h0 / size per unit of log(zoom), measured with the
+// default options on a 100x100 grid at zoom 1.5 to 3. The lift's depends on the profile
+// (gaussian, sphere, mesa); the field's h0 / size is its peak's log zoom, which the context's
+// resistance lowers by about 1 / 1.7.
 double initial_height(const Lens& lens, LensModel model) {
-  // Measured with the defaults: the lift per profile (gaussian, sphere, mesa), the field's
-  // height over size is its peak log zoom, which the context's resistance lowers by about 1.7.
   const double per_log_zoom[] = {1.08, 2.3, 1.95};
   const double c = model == LensModel::kField ? 1.7 : per_log_zoom[int(lens.profile)];
   return lens.region.size() * c * std::log(lens.zoom);

@@ -9,8 +9,7 @@ namespace geolens {
 
 using SpMat = Eigen::SparseMatrix<double>;
 
-DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed, bool symmetric)
-    : symmetric_(symmetric) {
+DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed) {
   require(A.rows() == A.cols() && size_t(A.rows()) == fixed.size(), "DirichletSolver",
           "matrix is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) + " but " +
               std::to_string(fixed.size()) + " fixed flags were given");
@@ -22,14 +21,7 @@ DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed,
     }
   }
   split(A);
-  if (free_.empty()) return;
-  if (symmetric_) {
-    llt_ = std::make_unique<WindowedCholesky>(A_ff_);
-  } else {
-    lu_ = std::make_unique<Eigen::SparseLU<SpMat>>();
-    lu_->analyzePattern(A_ff_);
-    factorize();
-  }
+  if (!free_.empty()) cholesky_ = std::make_unique<WindowedCholesky>(A_ff_);
 }
 
 DirichletSolver::~DirichletSolver() = default;
@@ -79,23 +71,6 @@ void DirichletSolver::split(const SpMat& A) {
   pattern_size_ = A.nonZeros();
 }
 
-void DirichletSolver::factorize(const std::vector<char>& focus) {
-  if (free_.empty()) return;
-  if (symmetric_) {
-    std::vector<char> focus_free;
-    if (!focus.empty()) {
-      focus_free.resize(free_.size());
-      for (size_t r = 0; r < free_.size(); ++r) focus_free[r] = focus[size_t(free_[r])];
-    }
-    llt_->refactorize(A_ff_, focus_free);
-  } else {
-    lu_->factorize(A_ff_);
-    if (lu_->info() != Eigen::Success)
-      throw SolverError("DirichletSolver: LU factorization failed on a " +
-                        std::to_string(free_.size()) + "-unknown system (singular)");
-  }
-}
-
 void DirichletSolver::refactorize(const SpMat& A, const std::vector<char>& focus) {
   require(focus.empty() || focus.size() == reduced_.size(), "DirichletSolver::refactorize",
           "focus must be empty or have one flag per row");
@@ -112,7 +87,13 @@ void DirichletSolver::refactorize(const SpMat& A, const std::vector<char>& focus
       A_fc_.valuePtr()[~d] = values[k];
     }
   }
-  factorize(focus);
+  if (free_.empty()) return;
+  std::vector<char> focus_free;
+  if (!focus.empty()) {
+    focus_free.resize(free_.size());
+    for (size_t r = 0; r < free_.size(); ++r) focus_free[r] = focus[size_t(free_[r])];
+  }
+  cholesky_->refactorize(A_ff_, focus_free);
 }
 
 Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,
@@ -127,8 +108,7 @@ Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,
   Eigen::MatrixXd rhs(free_.size(), b.cols());
   for (size_t r = 0; r < free_.size(); ++r) rhs.row(Eigen::Index(r)) = b.row(free_[r]);
   rhs.noalias() -= A_fc_ * x_fixed;  // free rows of A_fc_ only touch fixed columns
-  const Eigen::MatrixXd xf =
-      symmetric_ ? Eigen::MatrixXd(llt_->solve(rhs)) : Eigen::MatrixXd(lu_->solve(rhs));
+  const Eigen::MatrixXd xf = cholesky_->solve(rhs);
   for (size_t r = 0; r < free_.size(); ++r) x.row(free_[r]) = xf.row(Eigen::Index(r));
   return x;
 }

@@ -4,7 +4,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -14,26 +13,24 @@
 namespace geolens {
 
 /// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
-/// A_ff x_f = b_f - A_fc x_c. A is n x n; symmetric positive (semi)definite systems use a
-/// sparse Cholesky factorization (WindowedCholesky: after a change confined to a few rows,
-/// only a window around them is refactorized), others a sparse LU (symbolic analysis kept).
+/// A_ff x_f = b_f - A_fc x_c, A symmetric positive semidefinite (n x n), A_ff positive
+/// definite, by sparse Cholesky factorization (WindowedCholesky: after a change confined to a
+/// few rows, only a window around them is refactorized).
 class DirichletSolver {
  public:
   /// @param A       n x n system matrix
   /// @param fixed   n flags, non-zero where the value is given (at least one for a
   ///                semi-definite A, else the reduced system is singular)
-  /// @param symmetric  true if A is symmetric positive semidefinite (Cholesky), false for LU
   /// Throws SolverError if the reduced matrix cannot be factorized.
-  DirichletSolver(const Eigen::SparseMatrix<double>& A, const std::vector<char>& fixed,
-                  bool symmetric);
+  DirichletSolver(const Eigen::SparseMatrix<double>& A, const std::vector<char>& fixed);
   ~DirichletSolver();
   DirichletSolver(DirichletSolver&&) noexcept;
   DirichletSolver& operator=(DirichletSolver&&) noexcept;
 
   /// New values for A on the same sparsity pattern (same stored entries, in the same order) and
   /// the same fixed set: the values are copied into place and only the numeric factorization is
-  /// redone (for Cholesky, only its window when the changed values stay in it). Throws InvalidInput
-  /// if the pattern differs, SolverError as the constructor.
+  /// redone, of the window only when the changed values stay in it. Throws InvalidInput if the
+  /// pattern differs, SolverError as the constructor.
   /// @param focus  optional n flags: the rows later changes will be around (see
   ///                WindowedCholesky::refactorize); fixed rows are ignored
   void refactorize(const Eigen::SparseMatrix<double>& A, const std::vector<char>& focus = {});
@@ -45,14 +42,9 @@ class DirichletSolver {
 
   int free_count() const { return int(free_.size()); }
 
-  /// The Cholesky factorization (null for LU or when every entry is fixed).
-  const WindowedCholesky* cholesky() const { return llt_.get(); }
-
  private:
   void split(const Eigen::SparseMatrix<double>& A);
-  void factorize(const std::vector<char>& focus = {});
 
-  bool symmetric_;
   std::vector<int> free_;             // reduced index -> full index
   std::vector<int> reduced_;          // full index -> reduced index, or -1 if fixed
   Eigen::SparseMatrix<double> A_ff_;  // free x free block
@@ -62,8 +54,7 @@ class DirichletSolver {
   static constexpr int kDropped = std::numeric_limits<int>::min();
   std::vector<int> destination_;
   Eigen::Index pattern_size_ = 0;
-  std::unique_ptr<WindowedCholesky> llt_;
-  std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
+  std::unique_ptr<WindowedCholesky> cholesky_;  // of A_ff_; null when every entry is fixed
 };
 
 }  // namespace geolens

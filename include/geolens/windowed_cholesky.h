@@ -21,12 +21,12 @@ namespace geolens {
 /// A first change refactorizes the whole matrix (a plain SimplicialLLT, analysis kept); a change
 /// right after a full factorization, or one that leaves the window, builds a new window around
 /// the focus rows (default: the rows changed since the previous call), dilated by `margin` times
-/// the changed set's radius sqrt(#changed / pi) in rings of A's graph (at least 2), and factorizes
-/// everything again.
+/// their radius sqrt(#rows / pi) in rings of A's graph (at least 2), and factorizes everything
+/// again.
 class WindowedCholesky {
  public:
   /// @param A       n x n symmetric positive definite, both triangles stored
-  /// @param margin  window dilation over the changed set's radius, >= 0
+  /// @param margin  window dilation over the focus rows' radius, >= 0
   /// Throws SolverError if A is not positive definite, InvalidInput for bad arguments.
   explicit WindowedCholesky(const Eigen::SparseMatrix<double>& A, double margin = 0.25);
   ~WindowedCholesky();
