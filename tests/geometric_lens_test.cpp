@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
 #include <tuple>
 
 #include "geolens/distortion.h"
@@ -91,24 +93,36 @@ namespace {
 
 // The interactive path against the exact, stateless one: a lens dragged in 4 px steps. Every
 // update keeps its zoom, flips nothing, and its energy is within 1 % of a fresh exact solve of
-// the same lens (same heights, same grid: subdivision off for the comparison).
+// the same lens (same heights, same grid: subdivision off for the comparison); for a circle (the
+// lift model) and a star polygon (the field model).
 TEST(GeometricLens, UpdateMatchesTheExactSolveWhileTheLensMoves) {
   LensOptions options;
   options.mesh = 60;
   options.subdivision.max_levels = 0;
-  GeometricLens moving(600, 500, options);
-  const GeometricLens exact(600, 500, options);
-  for (int step = 0; step < 6; ++step) {
-    const Lens lens{Region::circle({250.0 + 4 * step, 240.0 - 3 * step}, 90), 2.5,
-                    Profile::kGaussian};
-    const LensResult& r = moving.update({lens});
-    EXPECT_NEAR(r.zoom_measured[0] / 2.5, 1.0, 0.03) << "step " << step;
-    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
-    EXPECT_TRUE(r.flattening.converged);
-    if (step > 0) EXPECT_LE(r.solves, 2) << "the previous heights should be reused";
-    const LensResult reference = exact.solve_with_heights({lens}, r.heights);
-    EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01)
-        << "step " << step;
+  auto star = [](const Eigen::Vector2d& centre) {
+    std::vector<Eigen::Vector2d> p;
+    for (int k = 0; k < 10; ++k) {
+      const double r = k % 2 == 0 ? 100 : 45, a = M_PI / 2 + k * M_PI / 5;
+      p.push_back(centre + r * Eigen::Vector2d(std::cos(a), -std::sin(a)));
+    }
+    return Region::polygon(p);
+  };
+  for (const bool polygon : {false, true}) {
+    GeometricLens moving(600, 500, options);
+    const GeometricLens exact(600, 500, options);
+    for (int step = 0; step < 6; ++step) {
+      const Eigen::Vector2d centre(250.0 + 4 * step, 240.0 - 3 * step);
+      const Lens lens{polygon ? star(centre) : Region::circle(centre, 90), 2.5};
+      const LensResult& r = moving.update({lens});
+      SCOPED_TRACE(std::string(polygon ? "star" : "circle") + ", step " + std::to_string(step));
+      EXPECT_EQ(r.model, polygon ? LensModel::kField : LensModel::kLift);
+      EXPECT_NEAR(r.zoom_measured[0] / 2.5, 1.0, 0.03);
+      EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+      EXPECT_TRUE(r.flattening.converged);
+      if (step > 0) EXPECT_LE(r.solves, 2) << "the previous heights should be reused";
+      const LensResult reference = exact.solve_with_heights({lens}, r.heights);
+      EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
+    }
   }
 }
 
