@@ -244,13 +244,7 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   Eigen::AlignedBox2d box;
   const Grid grid = base_grid(lenses, box);
   const PlanarMesh mesh = subdivide(
-      grid,
-      [&](const Eigen::Vector2d& p) {
-        double z = 0;
-        for (size_t k = 0; k < lenses.size(); ++k)
-          z = std::max(z, lens_height(lenses[k], heights[k], p));
-        return z;
-      },
+      grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
       options_.subdivision);
   const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r);
 

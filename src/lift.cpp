@@ -33,6 +33,23 @@ double lens_height(const Lens& lens, double h0, const Eigen::Vector2d& p) {
   return h0 * lens.region.thickness(p) / lens.region.size() * profile_value(lens.profile, t);
 }
 
+namespace {
+
+// Overlapping lenses combine by the 4-norm of their heights: where one is 0 it is the other's,
+// and unlike the max it leaves no crease where two are equal (its gradient is continuous).
+constexpr double kCombinePower = 4;
+
+}  // namespace
+
+double lift_height(const std::vector<Lens>& lenses, const std::vector<double>& heights,
+                   const Eigen::Vector2d& p) {
+  require(heights.size() == lenses.size(), "lift_height", "one height per lens expected");
+  double sum = 0;
+  for (size_t k = 0; k < lenses.size(); ++k)
+    sum += std::pow(lens_height(lenses[k], heights[k], p), kCombinePower);
+  return std::pow(sum, 1 / kCombinePower);
+}
+
 Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
             const std::vector<double>& heights) {
   require(heights.size() == lenses.size(), "lift", "one height per lens expected");
@@ -56,10 +73,13 @@ Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
           region.thickness(p) / region.size() * profile_value(lenses[k].profile, depth);
       out.inside[size_t(i)] = 1;
       out.level(i) = std::max(out.level(i), level);
-      out.V(i, 2) = std::max(out.V(i, 2), heights[k] * level);
-      out.log_zoom(i) = std::max(out.log_zoom(i), heights[k] * level / region.size());
+      // Sums of powers here, their roots below.
+      out.V(i, 2) += std::pow(heights[k] * level, kCombinePower);
+      out.log_zoom(i) += std::pow(heights[k] * level / region.size(), kCombinePower);
     }
   }
+  out.V.col(2) = out.V.col(2).array().pow(1 / kCombinePower);
+  out.log_zoom = out.log_zoom.array().pow(1 / kCombinePower);
   return out;
 }
 
