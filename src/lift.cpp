@@ -37,7 +37,8 @@ namespace {
 
 // Overlapping lenses combine by the 4-norm of their heights: where one is 0 it is the other's,
 // and unlike the max it leaves no crease where two are equal (its gradient is continuous).
-constexpr double kCombinePower = 4;
+double fourth_power(double x) { return (x * x) * (x * x); }
+double fourth_root(double x) { return std::sqrt(std::sqrt(x)); }
 
 }  // namespace
 
@@ -46,8 +47,8 @@ double lift_height(const std::vector<Lens>& lenses, const std::vector<double>& h
   require(heights.size() == lenses.size(), "lift_height", "one height per lens expected");
   double sum = 0;
   for (size_t k = 0; k < lenses.size(); ++k)
-    sum += std::pow(lens_height(lenses[k], heights[k], p), kCombinePower);
-  return std::pow(sum, 1 / kCombinePower);
+    sum += fourth_power(lens_height(lenses[k], heights[k], p));
+  return fourth_root(sum);
 }
 
 Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
@@ -74,12 +75,15 @@ Lifted lift(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
       out.inside[size_t(i)] = 1;
       out.level(i) = std::max(out.level(i), level);
       // Sums of powers here, their roots below.
-      out.V(i, 2) += std::pow(heights[k] * level, kCombinePower);
-      out.log_zoom(i) += std::pow(heights[k] * level / region.size(), kCombinePower);
+      out.V(i, 2) += fourth_power(heights[k] * level);
+      out.log_zoom(i) += fourth_power(heights[k] * level / region.size());
     }
   }
-  out.V.col(2) = out.V.col(2).array().pow(1 / kCombinePower);
-  out.log_zoom = out.log_zoom.array().pow(1 / kCombinePower);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!out.inside[size_t(i)]) continue;
+    out.V(i, 2) = fourth_root(out.V(i, 2));
+    out.log_zoom(i) = fourth_root(out.log_zoom(i));
+  }
   return out;
 }
 
