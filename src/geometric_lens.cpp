@@ -24,14 +24,21 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// First guess of the peak height for a zoom: h0 / size per unit of log(zoom), measured with the
-// default options on a 100x100 grid at zoom 1.5 to 3. The lift's depends on the profile
-// (gaussian, sphere, mesa); the field's h0 / size is its peak's log zoom, which the context's
-// resistance lowers by about 1 / 1.7.
+// First guess of the peak height for a zoom (pixels). The lift's, in units of the region's
+// size, is a L + b L^2 with L = log(zoom), per profile (gaussian, sphere, mesa), fitted through
+// the calibrated heights of zoom 2 and 3 (default options, 100 x 100 grid, r = 150 px on 1024
+// px), so those need a single solve; the field's is its peak's log zoom, which the context's
+// resistance lowers by about 1 / 1.7. L is taken at most log 8, where the fits still rise.
+double height_for_zoom(const Lens& lens, LensModel model, double zoom) {
+  const double L = std::min(std::log(zoom), std::log(8.0));
+  if (model == LensModel::kField) return lens.region.size() * 1.7 * L;
+  const double a[] = {1.180, 2.854, 2.264}, b[] = {-0.0912, -0.687, -0.453};
+  const int p = int(lens.profile);
+  return lens.region.size() * (a[p] * L + b[p] * L * L);
+}
+
 double initial_height(const Lens& lens, LensModel model) {
-  const double per_log_zoom[] = {1.08, 2.3, 1.95};
-  const double c = model == LensModel::kField ? 1.7 : per_log_zoom[int(lens.profile)];
-  return lens.region.size() * c * std::log(lens.zoom);
+  return height_for_zoom(lens, model, lens.zoom);
 }
 
 // Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
@@ -351,7 +358,8 @@ LensResult GeometricLens::calibrate(
   std::vector<double> lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
   std::vector<int> last_side(n, 0);
   for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
-  const double cap = model_for(lenses) == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize;
+  const LensModel model = model_for(lenses);
+  const double cap = model == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize;
   StageTimings sum;
   LensResult best;
   double best_miss = std::numeric_limits<double>::infinity();
@@ -385,8 +393,12 @@ LensResult GeometricLens::calibrate(
       }
       last_side[k] = side;
       if (hi[k] < 0) {
-        // No upper end yet: extrapolate log(zoom) linearly through h = 0, at most doubling.
-        h[k] = gain > 0 ? std::min(2.0 * h[k], h[k] * std::log(lenses[k].zoom) / gain) : 2.0 * h[k];
+        // No upper end yet: scale the height by the first guess's ratio between the zoom
+        // wanted and the zoom reached (the guess's curve through h = 0), at most doubling.
+        h[k] = gain > 0
+                   ? std::min(2.0 * h[k], h[k] * height_for_zoom(lenses[k], model, lenses[k].zoom) /
+                                              height_for_zoom(lenses[k], model, std::exp(gain)))
+                   : 2.0 * h[k];
       } else {
         h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
       }
