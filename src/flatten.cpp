@@ -316,7 +316,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
   require(guess == nullptr || guess->rows() == X0.rows(), "Flattener::solve",
           "the second guess must have as many rows as the first");
   FlattenResult r;
-  r.X = X0;
+  r.X = guess ? *guess : X0;
   const Eigen::Index n = rest_.rows();
   // Per triangle corner, its share of the global step's right-hand side: for each edge (a, c)
   // of weight w, w M (s_a - s_c) goes to a and its negative to c. Gathered per vertex below.
@@ -344,24 +344,18 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
     });
     return std::accumulate(triangle_energy.begin(), triangle_energy.end(), 0.0);
   };
-  // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps X0's.
-  const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? X0 : rest_;
+  // The guess starts unless it folds a triangle (a flip-safe step cannot unfold it).
+  r.energy.push_back(local_step());
+  if (guess && std::find(folded.begin(), folded.end(), 1) != folded.end()) {
+    r.X = X0;
+    r.energy.back() = local_step();
+  }
+  // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps the start's.
+  const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? r.X : rest_;
   // An energy this small relative to the total weight is the exact solution up to rounding.
   double total_weight = 0;
   for (const Triangle& t : triangles_) total_weight += t.area2c;
   const double negligible = 1e-20 * total_weight;
-  r.energy.push_back(local_step());
-  if (guess) {
-    // The second guess replaces X0 if it is lower in energy and folds no triangle.
-    r.X = *guess;
-    const double e = local_step();
-    if (e < r.energy.back() && std::find(folded.begin(), folded.end(), 1) == folded.end()) {
-      r.energy.back() = e;
-    } else {
-      r.X = X0;
-      local_step();
-    }
-  }
   while (r.iterations < options_.max_iterations) {
     if (r.energy.back() <= negligible) {
       r.converged = true;

@@ -301,7 +301,8 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
 
   t = Clock::now();
   // A lens dragged steadily moves its flattening steadily: the last update's change added again
-  // is the better start when it folds nothing and has the lower energy.
+  // is the better start (unless it folds a triangle; after a stop or a jump it costs at most an
+  // iteration).
   const bool predicted = cache_.predicted.rows() == cache_.flat.rows();
   r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
   cache_.predicted.resize(0, 2);  // only the first solve of an update has one

@@ -117,7 +117,7 @@ class Flattener {
 
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
-  /// `guess` (optional, #V x 2) starts instead when its energy is lower and it folds nothing.
+  /// `guess` (optional, #V x 2) starts instead unless it folds a triangle.
   FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr) const;
 
   /// E(X) with the metric targets fitted to X (the local step), see above.
