@@ -139,7 +139,8 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   const bool scaled = options_.standard == Standard::kScaled;
   require(!scaled || (log_scale.size() == n && log_scale.allFinite()), "Flattener",
           "scaled standard triangles need one finite log scale per vertex");
-  // Standard triangles (paper Fig. 4): v0 at the origin, v1 on the x axis, v2 above.
+  // Standard triangles: the lifted triangle laid flat (paper Fig. 4: v0 at the origin, v1 on the
+  // x axis, v2 above), or the planar triangle scaled.
   triangles_.resize(size_t(F_.rows()));
   std::vector<double> planar_area(triangles_.size());
   std::vector<char> degenerate(triangles_.size(), 0);
