@@ -339,13 +339,18 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
                 : known        ? cache_.result.heights[k]
                                : initial_height(lens, model));
   }
-  const Eigen::MatrixX2d before = cache_.flat;
+  Eigen::MatrixX2d before = cache_.flat;
+  const Eigen::Vector2d box_before = cache_.box.min();
   if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
   cache_.result = calibrate(
       lenses, h, [&](const std::vector<double>& heights) { return solve_cached(lenses, heights); });
   cache_.lenses = lenses;
   cache_.change.resize(0, 2);
-  if (before.rows() == cache_.flat.rows()) cache_.change = cache_.flat - before;
+  if (before.rows() == cache_.flat.rows()) {
+    // In the current patch's coordinates (a local patch moves with its lens).
+    before.rowwise() += (cache_.box.min() - box_before).transpose();
+    cache_.change = cache_.flat - before;
+  }
   return cache_.result;
 }
 
