@@ -2,6 +2,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "geolens/flatten.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/grid.h"
@@ -117,6 +119,28 @@ void BM_UpdateMoved(benchmark::State& state) {
       benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
 }
 
+// The same drag with a 5-pointed star of radius 120 px (the field model), its Region built
+// anew every frame (rasterized medial axis and distance fields included).
+void BM_UpdateMovedStar(benchmark::State& state) {
+  LensOptions o;
+  o.mesh = int(state.range(0));
+  GeometricLens lens(1024, 1024, o);
+  auto star = [](double x) {
+    std::vector<Eigen::Vector2d> p;
+    for (int k = 0; k < 10; ++k) {
+      const double r = k % 2 == 0 ? 120 : 0.382 * 120, a = M_PI / 2 + k * M_PI / 5;
+      p.emplace_back(x + r * std::cos(a), 512 - r * std::sin(a));
+    }
+    return Region::polygon(p);
+  };
+  double x = 400;
+  lens.update({Lens{star(x), 2.5}});
+  for (auto _ : state) {
+    x = x + 3 > 620 ? 400 : x + 3;
+    benchmark::DoNotOptimize(lens.update({Lens{star(x), 2.5}}));
+  }
+}
+
 // First placement: a new GeometricLens, nothing cached, calibrated from the first guess.
 void BM_UpdateFirst(benchmark::State& state) {
   LensOptions o;
@@ -134,6 +158,7 @@ BENCHMARK(BM_UpdateMoved)
     ->Args({200, 10})
     ->Iterations(222)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_UpdateMovedStar)->Arg(100)->Arg(200)->Iterations(222)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UpdateFirst)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
 
 }  // namespace
