@@ -71,7 +71,7 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
   c.add_option("--model", a.model,
                "lift (the paper's: lifted triangles, harmonic texture), field (the lift as a "
-               "zoom field, any shape magnified in every direction) or auto (lift for circles "
+               "zoom field: any shape reaches its zoom) or auto (lift for circles "
                "only, else field)")
       ->capture_default_str();
   c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")

@@ -36,8 +36,10 @@ enum class LensModel {
   /// only.
   kLift,
   /// The lift read as a field of log magnification (Lifted::log_zoom): the flattening keeps
-  /// each planar triangle's shape scaled by it, the texture is not re-mapped. Magnifies a
-  /// region of any shape in every direction, its thin parts as much as its wide ones.
+  /// each planar triangle's shape scaled by it, the texture is not re-mapped. A region of any
+  /// shape reaches its zoom at its peak, junctions included; a thinner part asks for less
+  /// (log zoom grows with the local half-width), and a long thin arm still widens more than
+  /// it lengthens.
   kField,
   kAuto,  ///< kLift when every lens is a circle, else kField
 };
