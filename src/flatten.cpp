@@ -39,9 +39,6 @@ Boundary parse_boundary(const std::string& name) {
 std::string to_string(FlattenWeights weights) {
   return weights == FlattenWeights::kPaper ? "paper" : "cotan";
 }
-std::string to_string(Standard standard) {
-  return standard == Standard::kLifted ? "lifted" : "scaled";
-}
 std::string to_string(Metric metric) { return metric == Metric::kPaper ? "paper" : "spectrum"; }
 std::string to_string(Boundary boundary) {
   switch (boundary) {

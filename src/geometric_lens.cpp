@@ -337,8 +337,15 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const LensModel model = model_for(lenses);
-  Eigen::AlignedBox2d box;
-  const double cell = base_grid(lenses, box).cell;
+  // The grid's cell, only for a lens that needs a first guess (building the grid is not free).
+  double cell = 0;
+  auto guess = [&](const Lens& lens) {
+    if (cell == 0) {
+      Eigen::AlignedBox2d box;
+      cell = base_grid(lenses, box).cell;
+    }
+    return initial_height(lens, model, cell);
+  };
   std::vector<double> h;
   for (size_t k = 0; k < lenses.size(); ++k) {
     const Lens& lens = lenses[k];
@@ -347,9 +354,7 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
                        cache_.lenses[k].profile == lens.profile &&
                        cache_.lenses[k].region.kind() == lens.region.kind() &&
                        cache_.lenses[k].region.size() == lens.region.size();
-    h.push_back(lens.zoom == 1 ? 0.0
-                : known        ? cache_.result.heights[k]
-                               : initial_height(lens, model, cell));
+    h.push_back(lens.zoom == 1 ? 0.0 : known ? cache_.result.heights[k] : guess(lens));
   }
   Eigen::MatrixX2d before = cache_.flat;
   const Eigen::Vector2d box_before = cache_.box.min();

@@ -51,7 +51,6 @@ FlattenWeights parse_flatten_weights(const std::string& name);  ///< "paper" | "
 Metric parse_metric(const std::string& name);                   ///< "paper" | "spectrum"
 Boundary parse_boundary(const std::string& name);               ///< "sliding" | "fixed" | "free"
 std::string to_string(FlattenWeights weights);
-std::string to_string(Standard standard);
 std::string to_string(Metric metric);
 std::string to_string(Boundary boundary);
 
