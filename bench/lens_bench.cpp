@@ -75,6 +75,7 @@ void BM_Flatten(benchmark::State& state) {
 // A full magnify: calibration to zoom 2 (several solves) and everything they contain.
 void BM_SolveZoom2(benchmark::State& state) {
   LensOptions o;
+  o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.mesh = int(state.range(0));
   const GeometricLens lens(1024, 1024, o);
   const Lens l{Region::circle({512, 512}, 150)};
@@ -102,6 +103,7 @@ namespace {
 // every window rebuild of the flattening's factorization and every jump back.
 void BM_UpdateMoved(benchmark::State& state) {
   LensOptions o;
+  o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.mesh = int(state.range(0));
   const double step = double(state.range(1));
   GeometricLens lens(1024, 1024, o);
@@ -123,6 +125,7 @@ void BM_UpdateMoved(benchmark::State& state) {
 // anew every frame (rasterized medial axis and distance fields included).
 void BM_UpdateMovedStar(benchmark::State& state) {
   LensOptions o;
+  o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.mesh = int(state.range(0));
   GeometricLens lens(1024, 1024, o);
   auto star = [](double x) {
@@ -144,6 +147,7 @@ void BM_UpdateMovedStar(benchmark::State& state) {
 // First placement: a new GeometricLens, nothing cached, calibrated from the first guess.
 void BM_UpdateFirst(benchmark::State& state) {
   LensOptions o;
+  o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.mesh = int(state.range(0));
   for (auto _ : state) {
     GeometricLens lens(1024, 1024, o);
@@ -172,6 +176,7 @@ namespace {
 void BM_LocalUpdateMoved(benchmark::State& state) {
   const double side = double(state.range(0));
   LensOptions o;
+  o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.extent = Extent::kLocal;
   GeometricLens lens(side, side, o);
   double x = side / 2;

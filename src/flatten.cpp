@@ -11,6 +11,7 @@
 #include "geolens/errors.h"
 #include "geolens/grid.h"
 #include "geolens/sparse_solver.h"
+#include "geolens/svd2.h"
 #include "parallel.h"
 
 namespace geolens {
@@ -65,7 +66,8 @@ void validate(const FlattenOptions& o) {
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
-                     const FlattenOptions& options, const Eigen::VectorXd& log_scale)
+                     const FlattenOptions& options, const Eigen::VectorXd& log_scale,
+                     const FocusConstraints& focus)
     : F_(F), rest_(V3.leftCols<2>()), options_(options) {
   validate(options);
   const Eigen::Index n = V3.rows();
@@ -79,7 +81,7 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   std::vector<int> fill(corner_start_.begin(), corner_start_.end() - 1);
   for (Eigen::Index k = 0; k < F.size(); ++k)
     corner_[size_t(fill[size_t(F(k / 3, k % 3))]++)] = int(k);
-  assemble(V3, level, log_scale);
+  assemble(V3, level, log_scale, focus);
 
   std::vector<char> fix_x(size_t(n), 0), fix_y(size_t(n), 0);
   for (size_t i = 0; i < size_t(n); ++i) {
@@ -96,9 +98,13 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
     }
   }
   if (options.boundary == Boundary::kFree) fix_x[0] = fix_y[0] = 1;
+  for (size_t i = 0; i < focus.pinned.size(); ++i)
+    if (focus.pinned[i]) fix_x[i] = fix_y[i] = 1;
   require(std::find(fix_x.begin(), fix_x.end(), 1) != fix_x.end() &&
               std::find(fix_y.begin(), fix_y.end(), 1) != fix_y.end(),
           "Flattener", "the boundary mode fixes no vertex: are the grid sides set?");
+  fix_x_ = fix_x;
+  fix_y_ = fix_y;
   if (fix_x == fix_y) {
     solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x);
   } else {
@@ -108,12 +114,12 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
 }
 
 void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
-                         const Eigen::VectorXd& log_scale) {
+                         const Eigen::VectorXd& log_scale, const FocusConstraints& focus) {
   require(V3.rows() == rest_.rows(), "Flattener::reweight",
           "the lifted mesh has " + std::to_string(V3.rows()) + " vertices, expected " +
               std::to_string(rest_.rows()));
   rest_ = V3.leftCols<2>();
-  assemble(V3, level, log_scale);
+  assemble(V3, level, log_scale, focus);
   // The rows the lift touches (a triangle with a lifted corner changes all three): where the
   // next lift's changes will be, for the factorizations' windows.
   std::vector<char> lifted(size_t(V3.rows()), 0);
@@ -130,9 +136,15 @@ void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
 }
 
 void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
-                         const Eigen::VectorXd& log_scale) {
+                         const Eigen::VectorXd& log_scale, const FocusConstraints& focus) {
   const Eigen::Index n = V3.rows();
   require(level.size() == n, "Flattener", "level must have one entry per vertex");
+  require(focus.empty() || (focus.focus.size() == size_t(n) && focus.pinned.size() == size_t(n) &&
+                            focus.anisotropy.size() == n && focus.anisotropy.minCoeff() >= 1 &&
+                            std::isfinite(focus.focus_weight) && focus.focus_weight > 0),
+          "Flattener",
+          "focus constraints need one focus, pin and anisotropy bound >= 1 per vertex and a "
+          "positive focus weight");
   const bool scaled = options_.standard == Standard::kScaled;
   require(!scaled || (log_scale.size() == n && log_scale.allFinite()), "Flattener",
           "scaled standard triangles need one finite log scale per vertex");
@@ -179,11 +191,24 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       Triangle& t = triangles_[f];
+      const Eigen::Index fi = Eigen::Index(f);
       double c = 1.0;
       if (options_.weights == FlattenWeights::kPaper) {
-        const Eigen::Index fi = Eigen::Index(f);
         const double h = (level(F_(fi, 0)) + level(F_(fi, 1)) + level(F_(fi, 2))) / 3.0;
         c = (1.0 + h) * (0.5 * t.area2c) / mean_area;
+      }
+      t.kind = Triangle::kMetric;
+      if (!focus.empty()) {
+        const int a = focus.focus[size_t(F_(fi, 0))];
+        if (a >= 0 && focus.focus[size_t(F_(fi, 1))] == a && focus.focus[size_t(F_(fi, 2))] == a) {
+          t.kind = Triangle::kFocus;
+          c *= focus.focus_weight;
+        } else {
+          t.kind = Triangle::kBounded;
+          t.anisotropy = (focus.anisotropy(F_(fi, 0)) + focus.anisotropy(F_(fi, 1)) +
+                          focus.anisotropy(F_(fi, 2))) /
+                         3.0;
+        }
       }
       t.area2c *= c;
       const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
@@ -256,12 +281,47 @@ inline Eigen::Matrix2d Flattener::target(const Eigen::Matrix2d& J) const {
   return ((1 - a) + a * Q) * R;
 }
 
+inline Eigen::Matrix2d Flattener::target(const Triangle& t, const Eigen::Matrix2d& J) const {
+  switch (t.kind) {
+    case Triangle::kMetric:
+      return target(J);
+    case Triangle::kFocus:
+      return Eigen::Matrix2d::Identity();
+    case Triangle::kBounded:
+      break;
+  }
+  // Project the singular values (s1, s2), s1 >= |s2|, onto the cone s2 <= s1 <= K s2: inside it
+  // J is its own target; otherwise the closest point is on the ray s2 = s1 / K.
+  const SignedSvd2 d = signed_svd(J);
+  const double K = t.anisotropy;
+  if (d.s2 > 0 && d.s1 <= K * d.s2) return J;
+  const double s2 = std::max(0.0, (K * d.s1 + d.s2) / (K * K + 1));
+  const Eigen::Matrix2d U = Eigen::Rotation2Dd(d.phi).toRotationMatrix();
+  const Eigen::Matrix2d V = Eigen::Rotation2Dd(d.theta).toRotationMatrix();
+  return U * Eigen::Vector2d(K * s2, s2).asDiagonal() * V;
+}
+
+bool Flattener::admissible(const Eigen::MatrixX2d& X) const {
+  require(X.rows() == rest_.rows(), "Flattener::admissible", "one row per vertex expected");
+  for (Eigen::Index v = 0; v < X.rows(); ++v) {
+    if ((fix_x_[size_t(v)] && X(v, 0) != rest_(v, 0)) ||
+        (fix_y_[size_t(v)] && X(v, 1) != rest_(v, 1)))
+      return false;
+  }
+  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+    const Eigen::Vector2d a = X.row(F_(f, 1)) - X.row(F_(f, 0));
+    const Eigen::Vector2d b = X.row(F_(f, 2)) - X.row(F_(f, 0));
+    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return false;
+  }
+  return true;
+}
+
 double Flattener::energy(const Eigen::MatrixX2d& X) const {
   double e = 0;
   for (size_t f = 0; f < triangles_.size(); ++f) {
     const Triangle& t = triangles_[f];
     const Eigen::Matrix2d J = jacobian(t, int(f), X);
-    e += t.area2c * (J - target(J)).squaredNorm();
+    e += t.area2c * (J - target(t, J)).squaredNorm();
   }
   return e;
 }
@@ -327,7 +387,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
         const Triangle& t = triangles_[f];
         const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
         folded[f] = J.determinant() <= 0;
-        const Eigen::Matrix2d M = target(J);
+        const Eigen::Matrix2d M = target(t, J);
         triangle_energy[f] = t.area2c * (J - M).squaredNorm();
         const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
         Eigen::Vector2d* q = &share[3 * f];
@@ -351,11 +411,25 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
   // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps the start's.
   const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? r.X : rest_;
   // An energy this small relative to the total weight is the exact solution up to rounding.
-  double total_weight = 0;
-  for (const Triangle& t : triangles_) total_weight += t.area2c;
-  const double negligible = 1e-20 * total_weight;
+  double total_weight = 0, bounded_weight = 0;
+  for (const Triangle& t : triangles_) {
+    total_weight += t.area2c;
+    if (t.kind == Triangle::kBounded) bounded_weight += t.area2c;
+  }
+  // Bounded-distortion targets make the energy the distance to a feasible map, which falls
+  // geometrically to 0: it is met once the context's mean squared misfit is tolerance^2.
+  const double negligible =
+      std::max(1e-20 * total_weight, options_.tolerance * options_.tolerance * bounded_weight);
+  // A start off its fixed values (a guess that moved a pinned or border vertex) takes at least
+  // one global step, which puts them back, however low its energy.
+  bool off_fixed = false;
+  for (size_t v = 0; v < size_t(n) && !off_fixed; ++v) {
+    const Eigen::Index i = Eigen::Index(v);
+    off_fixed = (fix_x_[v] && r.X(i, 0) != fixed_values(i, 0)) ||
+                (fix_y_[v] && r.X(i, 1) != fixed_values(i, 1));
+  }
   while (r.iterations < options_.max_iterations) {
-    if (r.energy.back() <= negligible) {
+    if (r.energy.back() <= negligible && !(off_fixed && r.iterations == 0)) {
       r.converged = true;
       break;
     }

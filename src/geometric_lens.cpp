@@ -10,6 +10,7 @@
 
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
+#include "geolens/focus_lens.h"
 
 namespace geolens {
 
@@ -30,6 +31,7 @@ double ms_since(Clock::time_point start) {
 // px), so those need a single solve; the field's is its peak's log zoom, which the context's
 // resistance lowers by about 1 / 1.7. L is taken at most log 8, where the fits still rise.
 double height_for_zoom(const Lens& lens, LensModel model, double zoom) {
+  if (model == LensModel::kFocus) return std::log(zoom);  // exact, up to the focus weight
   const double L = std::min(std::log(zoom), std::log(8.0));
   if (model == LensModel::kField) return lens.region.size() * 1.7 * L;
   const double a[] = {1.180, 2.854, 2.264}, b[] = {-0.0912, -0.687, -0.453};
@@ -43,9 +45,14 @@ double height_for_zoom(const Lens& lens, LensModel model, double zoom) {
 // fit above (made at 0.069) is rescaled by that factor. The sphere and the mesa hardly change.
 double initial_height(const Lens& lens, LensModel model, double cell) {
   const double h = height_for_zoom(lens, model, lens.zoom);
-  if (model == LensModel::kField || lens.profile != Profile::kGaussian) return h;
+  if (model != LensModel::kLift || lens.profile != Profile::kGaussian) return h;
   auto coarseness = [](double x) { return 1 + 15 * x * x; };
   return h * coarseness(cell / lens.region.size()) / coarseness(0.069);
+}
+
+// The side of a grid cell over `box` with `mesh` vertices along its long side, pixels.
+double cell_size(const Eigen::AlignedBox2d& box, int mesh) {
+  return box.sizes().maxCoeff() / (mesh - 1);
 }
 
 // Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
@@ -121,15 +128,18 @@ Extent parse_extent(const std::string& name) {
 std::string to_string(Extent extent) { return extent == Extent::kGlobal ? "global" : "local"; }
 
 LensModel parse_lens_model(const std::string& name) {
+  if (name == "focus") return LensModel::kFocus;
   if (name == "lift") return LensModel::kLift;
   if (name == "field") return LensModel::kField;
   if (name == "auto") return LensModel::kAuto;
   throw InvalidInput("parse_lens_model: unknown lens model '" + name +
-                     "' (expected lift, field or auto)");
+                     "' (expected focus, lift, field or auto)");
 }
 
 std::string to_string(LensModel model) {
   switch (model) {
+    case LensModel::kFocus:
+      return "focus";
     case LensModel::kLift:
       return "lift";
     case LensModel::kField:
@@ -162,15 +172,17 @@ GeometricLens::GeometricLens(double width, double height, const LensOptions& opt
 // carries the sides flags so the flattening pins it.
 Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const {
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
-  if (options_.extent == Extent::kGlobal || lenses.empty()) {
+  const bool focus = model_for(lenses) == LensModel::kFocus;
+  if ((options_.extent == Extent::kGlobal && !focus) || lenses.empty()) {
     box = image;
     return grid_;
   }
   box.setEmpty();
   for (const Lens& lens : lenses) {
     const Eigen::Vector2d centre = lens.region.bounds().center();
-    const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() +
-                                 (options_.extent_factor - 1) * lens.region.size();
+    const double margin =
+        focus ? footprint_margin(lens) : (options_.extent_factor - 1) * lens.region.size();
+    const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() + margin;
     box.extend(centre - half).extend(centre + half);
   }
   box = box.intersection(image);
@@ -186,8 +198,33 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
   return LensModel::kLift;
 }
 
+std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
+                                        std::vector<double>& fits) const {
+  fits.clear();
+  if (model_for(lenses) != LensModel::kFocus) return lenses;
+  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
+  Eigen::AlignedBox2d box;
+  const double cell = base_grid(lenses, box).cell;
+  std::vector<Lens> out = lenses;
+  for (Lens& lens : out) {
+    fits.push_back(fitting_zoom(lens, cell, width_, height_));
+    if (lens.zoom <= fits.back()) continue;
+    lens.footprint = footprint_ratio(lens);  // the footprint asked for stays
+    lens.zoom = std::max(1.0, fits.back());
+  }
+  return out;
+}
+
 FlattenOptions GeometricLens::flatten_options(LensModel model) const {
   FlattenOptions o = options_.flatten;
+  if (model == LensModel::kFocus) {
+    // The footprints' box: its sides inside the image are pinned (focus_field), those on the
+    // image border slide.
+    o.boundary = Boundary::kSliding;
+    o.standard = Standard::kScaled;
+    o.weights = FlattenWeights::kCotan;
+    return o;
+  }
   if (options_.extent == Extent::kLocal) o.boundary = Boundary::kFixed;
   if (model == LensModel::kField) {
     // The rest areas already weigh the magnified triangles; the paper's (1 + h) A weights on
@@ -203,12 +240,28 @@ FlattenOptions GeometricLens::flatten_options(LensModel model) const {
 Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
                                        const std::vector<double>& heights, const PlanarMesh& mesh,
                                        const Eigen::AlignedBox2d& box, Clock::time_point start,
-                                       LensResult& r) const {
+                                       LensResult& r, FocusConstraints& focus) const {
   r.model = model_for(lenses);
   r.heights = heights;
   r.mesh = mesh;
   r.box = box;
-  Lifted lifted = lift(r.mesh.V, lenses, heights);
+  Lifted lifted;
+  if (r.model == LensModel::kFocus) {
+    // The focus field read as a lift: z = size * log zoom, like the field model's.
+    FocusField field =
+        focus_field(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_);
+    lifted.V.resize(r.mesh.V.rows(), 3);
+    lifted.V.leftCols<2>() = r.mesh.V;
+    lifted.V.col(2) = field.log_scale * box.sizes().maxCoeff();
+    lifted.level = std::move(field.level);
+    lifted.log_zoom = std::move(field.log_scale);
+    lifted.inside.resize(size_t(r.mesh.V.rows()));
+    for (size_t i = 0; i < lifted.inside.size(); ++i)
+      lifted.inside[i] = field.constraints.focus[i] >= 0;
+    focus = std::move(field.constraints);
+  } else {
+    lifted = lift(r.mesh.V, lenses, heights);
+  }
   r.timings.lift = ms_since(start);
   const auto t = Clock::now();
   texture(lifted, r);
@@ -218,7 +271,7 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
 
 // Texture coordinates of the lifted mesh, with the fold fallback; the field model keeps them.
 void GeometricLens::texture(const Lifted& lifted, LensResult& r) const {
-  if (r.model == LensModel::kField) {
+  if (r.model == LensModel::kField || r.model == LensModel::kFocus) {
     r.warp.source = r.mesh.V;
     return;
   }
@@ -242,8 +295,9 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
   r.warp.screen = frame(r.flat, flatten_options(r.model).boundary, width_, height_);
   r.warp.screen_width = int(std::lround(width_));
   r.warp.screen_height = int(std::lround(height_));
-  if (options_.extent == Extent::kLocal) add_identity_frame(r.warp, r.mesh, r.box, width_, height_);
-  const double cell = r.box.sizes().maxCoeff() / (options_.mesh - 1);
+  const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
+  if (!r.box.isApprox(image)) add_identity_frame(r.warp, r.mesh, r.box, width_, height_);
+  const double cell = cell_size(r.box, options_.mesh);
   for (const Lens& lens : lenses) {
     const double radius = std::max(cell, 0.05 * lens.region.size());
     r.zoom_measured.push_back(magnification_at(r.warp, lens.region.peak(), radius));
@@ -257,18 +311,27 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
   LensResult r;
   Eigen::AlignedBox2d box;
   const Grid grid = base_grid(lenses, box);
-  const PlanarMesh mesh = subdivide(
-      grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
-      options_.subdivision);
-  const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r);
+  const PlanarMesh mesh =
+      model_for(lenses) == LensModel::kFocus
+          ? PlanarMesh(grid)
+          : subdivide(
+                grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
+                options_.subdivision);
+  FocusConstraints focus;
+  const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r, focus);
 
   auto t = Clock::now();
   const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                            flatten_options(r.model), lifted.log_zoom);
+                            flatten_options(r.model), lifted.log_zoom, focus);
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
-  r.flattening = flattener.solve(r.mesh.V);
+  if (r.model == LensModel::kFocus) {
+    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, heights,
+                                 cell_size(box, options_.mesh), width_, height_);
+  } else {
+    r.flattening = flattener.solve(r.mesh.V);
+  }
   r.timings.iterate = ms_since(t);
 
   finish(lenses, lifted, r);
@@ -285,24 +348,32 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   LensResult r;
   Eigen::AlignedBox2d box;
   const Grid grid = base_grid(lenses, box);
-  const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r);
+  FocusConstraints focus;
+  const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r, focus);
 
   auto t = Clock::now();
-  // A local patch has the same topology wherever it is, as long as its size is unchanged.
+  // A local patch has the same topology wherever it is, as long as its size is unchanged; a
+  // focus lens's also needs the same pinned vertices.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
-                             (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9;
+                             (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9 &&
+                             focus.pinned == cache_.pinned;
   if (same_topology && cache_.model == r.model) {
-    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom);
+    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus);
     const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
     cache_.flat.rowwise() += shift;
     if (cache_.predicted.rows() == cache_.flat.rows()) cache_.predicted.rowwise() += shift;
   } else {
-    cache_.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                                                   flatten_options(r.model), lifted.log_zoom);
-    cache_.flat = r.mesh.V;
+    cache_.flattener =
+        std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
+                                    flatten_options(r.model), lifted.log_zoom, focus);
+    cache_.flat =
+        r.model == LensModel::kFocus
+            ? focus_start(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_)
+            : r.mesh.V;
     cache_.predicted.resize(0, 2);
   }
   cache_.box = r.box;
+  cache_.pinned = std::move(focus.pinned);
   cache_.model = r.model;
   r.timings.factorize = ms_since(t);
 
@@ -321,19 +392,25 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   return r;
 }
 
-LensResult GeometricLens::solve(const std::vector<Lens>& lenses) const {
+LensResult GeometricLens::solve(const std::vector<Lens>& asked) const {
+  std::vector<double> fits;
+  const std::vector<Lens> lenses = fitted(asked, fits);
   std::vector<double> h;
   const LensModel model = model_for(lenses);
   Eigen::AlignedBox2d box;
   const double cell = base_grid(lenses, box).cell;
   for (const Lens& lens : lenses)
     h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, cell));
-  return calibrate(lenses, h, [&](const std::vector<double>& heights) {
+  LensResult r = calibrate(lenses, h, [&](const std::vector<double>& heights) {
     return solve_with_heights(lenses, heights);
   });
+  r.zoom_fits = std::move(fits);
+  return r;
 }
 
-const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
+const LensResult& GeometricLens::update(const std::vector<Lens>& asked) {
+  std::vector<double> fits;
+  const std::vector<Lens> lenses = fitted(asked, fits);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const LensModel model = model_for(lenses);
@@ -361,6 +438,7 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& lenses) {
   if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
   cache_.result = calibrate(
       lenses, h, [&](const std::vector<double>& heights) { return solve_cached(lenses, heights); });
+  cache_.result.zoom_fits = std::move(fits);
   cache_.lenses = lenses;
   cache_.change.resize(0, 2);
   if (before.rows() == cache_.flat.rows()) {
@@ -382,7 +460,13 @@ LensResult GeometricLens::calibrate(
   std::vector<int> last_side(n, 0);
   for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
   const LensModel model = model_for(lenses);
-  const double cap = model == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize;
+  // The largest height tried: a focus's log zoom, the field's peak log zoom, or the lift's
+  // height over the region's size.
+  auto cap = [&](const Lens& lens) {
+    if (model == LensModel::kFocus) return kMaxFieldLogZoom;
+    return lens.region.size() *
+           (model == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize);
+  };
   StageTimings sum;
   LensResult best;
   double best_miss = std::numeric_limits<double>::infinity();
@@ -426,13 +510,14 @@ LensResult GeometricLens::calibrate(
         h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
       }
       // Taller bumps only fold: a lens that has not reached its zoom at 20 sizes never will.
-      h[k] = std::min(h[k], cap * lenses[k].region.size());
+      h[k] = std::min(h[k], cap(lenses[k]));
     }
     if (miss < best_miss) {
       best_miss = miss;
       best = std::move(r);
     }
-    if (done || solve >= options_.max_calibration_solves) {
+    // A focus lens's zoom is its focus's scale, not a result to aim for: one solve.
+    if (done || solve >= options_.max_calibration_solves || model == LensModel::kFocus) {
       best.solves = solve;
       break;
     }

@@ -25,6 +25,11 @@ void validate_lens(const Lens& lens, double width, double height) {
   }
   require(std::isfinite(lens.zoom) && lens.zoom >= 1 && lens.zoom <= 8, "validate_lens",
           "zoom must be in [1, 8], got " + std::to_string(lens.zoom));
+  require(lens.footprint == 0 || (std::isfinite(lens.footprint) && lens.footprint > lens.zoom &&
+                                  lens.footprint <= 100),
+          "validate_lens",
+          "footprint must be 0 (default) or in (zoom, 100] = (" + std::to_string(lens.zoom) +
+              ", 100], got " + std::to_string(lens.footprint));
 }
 
 double lens_height(const Lens& lens, double h0, const Eigen::Vector2d& p) {

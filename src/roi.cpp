@@ -1,5 +1,6 @@
 #include "geolens/roi.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geolens/errors.h"
@@ -35,6 +36,10 @@ Region Region::circle(const Eigen::Vector2d& center, double radius) {
     return d >= radius ? 0.0 : 1.0 - d / radius;
   };
   impl->thickness = [radius](const Eigen::Vector2d&) { return radius; };
+  impl->distance = [center, radius](const Eigen::Vector2d& p) {
+    return std::max(0.0, (p - center).norm() - radius);
+  };
+  impl->reach = radius;
   return Region(std::move(impl));
 }
 
@@ -44,6 +49,8 @@ Eigen::Vector2d Region::peak() const { return impl_->peak; }
 double Region::size() const { return impl_->size; }
 double Region::depth(const Eigen::Vector2d& p) const { return impl_->depth(p); }
 double Region::thickness(const Eigen::Vector2d& p) const { return impl_->thickness(p); }
+double Region::distance(const Eigen::Vector2d& p) const { return impl_->distance(p); }
+double Region::reach() const { return impl_->reach; }
 const std::vector<Eigen::Vector2d>& Region::vertices() const { return impl_->vertices; }
 
 }  // namespace geolens

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -76,6 +77,13 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
   };
   impl->peak = field->raster.peak;
   impl->size = impl->thickness(impl->peak);
+  impl->distance = [field](const Eigen::Vector2d& p) {
+    return field->index.contains(p)
+               ? 0.0
+               : field->index.boundary_distance(p, std::numeric_limits<double>::infinity());
+  };
+  for (const Eigen::Vector2d& v : vertices)
+    impl->reach = std::max(impl->reach, (v - impl->peak).norm());
   return Region(std::move(impl));
 }
 
@@ -149,6 +157,40 @@ std::vector<Region> Region::from_mask(const Image& mask) {
     };
     impl->peak = raster->peak;
     impl->size = impl->thickness(impl->peak);
+    // Outside, the distance to the nearest pixel square on the blob's boundary (one with a
+    // 4-neighbour outside the blob), found by a scan over them.
+    auto in_blob = [&](int x, int y) {
+      return x >= 0 && y >= 0 && x < w && y < h && label[size_t(y) * w + x] == int(id);
+    };
+    auto edge = std::make_shared<std::vector<Eigen::Vector2d>>();  // pixel corners (x, y)
+    for (int y = b.y0; y <= b.y1; ++y) {
+      for (int x = b.x0; x <= b.x1; ++x) {
+        if (in_blob(x, y) &&
+            !(in_blob(x - 1, y) && in_blob(x + 1, y) && in_blob(x, y - 1) && in_blob(x, y + 1)))
+          edge->emplace_back(x, y);
+      }
+    }
+    for (const Eigen::Vector2d& e : *edge) {
+      const Eigen::Vector2d far =
+          (impl->peak - e)
+              .cwiseAbs()
+              .cwiseMax((impl->peak - e - Eigen::Vector2d::Ones()).cwiseAbs());
+      impl->reach = std::max(impl->reach, far.norm());
+    }
+    auto pixels = std::make_shared<const std::vector<uint8_t>>(inside);
+    impl->distance = [edge, pixels, width, height, x0 = b.x0 - 1,
+                      y0 = b.y0 - 1](const Eigen::Vector2d& p) {
+      const double px = std::floor(p.x()) - x0, py = std::floor(p.y()) - y0;
+      if (px >= 0 && py >= 0 && px < width && py < height &&
+          (*pixels)[size_t(py) * size_t(width) + size_t(px)])
+        return 0.0;
+      double best = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector2d& e : *edge) {
+        const Eigen::Vector2d d = (e - p).cwiseMax(p - e - Eigen::Vector2d::Ones()).cwiseMax(0.0);
+        best = std::min(best, d.squaredNorm());
+      }
+      return std::sqrt(best);
+    };
     regions.push_back(Region(std::move(impl)));
   }
   return regions;

@@ -120,7 +120,7 @@ TEST_F(Cli, MaskOfARealObjectReachesItsZoom) {
   const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
   const CliRun r =
       run("magnify " + examples + "coffee.jpg -o " + path("out.png") + " --lens mask:" + examples +
-          "coffee_rim_mask.png:2 --stats " + path("stats.json"));
+          "coffee_rim_mask.png:2 --model auto --stats " + path("stats.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream in(path("stats.json"));
   const nlohmann::json s = nlohmann::json::parse(in);
@@ -159,7 +159,7 @@ TEST_F(Cli, ZoomOneReproducesTheInput) {
 TEST_F(Cli, StatsHoldEveryField) {
   const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.jpg") +
                        " --lens circle:128,96,50:2 --lens circle:40,40,20:1.5 --size 128x96" +
-                       " --stats " + path("stats.json"));
+                       " --model auto --stats " + path("stats.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(load_image(path("out.jpg")).width, 128);
   std::ifstream in(path("stats.json"));
@@ -186,10 +186,11 @@ TEST_F(Cli, StatsHoldEveryField) {
 // With plain cotan weights, the rigid metric and a free boundary, the flattening minimizes the
 // ARAP energy: an independent gradient descent started from it finds nothing lower.
 TEST_F(Cli, FreeCotanFlatteningIsAConvergedArapMinimum) {
-  const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.png") +
-                       " --lens circle:128,96,60:2 --mesh 40 --weights cotan --metric paper" +
-                       " --alpha 0 --boundary free --tolerance 1e-12 --max-iterations 5000" +
-                       " --export-mesh " + path("mesh"));
+  const CliRun r =
+      run("magnify " + path("in.png") + " -o " + path("out.png") +
+          " --lens circle:128,96,60:2 --model lift --mesh 40 --weights cotan --metric paper" +
+          " --alpha 0 --boundary free --tolerance 1e-12 --max-iterations 5000" + " --export-mesh " +
+          path("mesh"));
   ASSERT_EQ(r.code, 0) << r.err;
   Eigen::MatrixX3d V3, flat;
   Eigen::MatrixX3i F, F2;

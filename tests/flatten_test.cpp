@@ -7,6 +7,7 @@
 #include "geolens/geometric_lens.h"
 #include "geolens/grid.h"
 #include "geolens/lift.h"
+#include "support/lens_options.h"
 
 namespace geolens {
 namespace {
@@ -78,7 +79,7 @@ TEST(Flattener, SlidingBorderStaysOnItsSides) {
 
 // Runs the lens with fixed heights (no calibration, so only the metric differs).
 LensResult run(Metric metric, double alpha, double tolerance) {
-  LensOptions o;
+  LensOptions o = test::auto_model();
   o.mesh = 41;
   o.flatten.metric = metric;
   o.flatten.alpha = alpha;

@@ -8,6 +8,7 @@
 
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
+#include "support/lens_options.h"
 
 namespace geolens {
 namespace {
@@ -21,7 +22,7 @@ class ZoomTest : public ::testing::TestWithParam<std::tuple<Profile, double>> {}
 
 TEST_P(ZoomTest, MeasuredZoomIsWithinTenPercentWithoutFlips) {
   const auto [profile, zoom] = GetParam();
-  const GeometricLens lens(1024, 1024);
+  const GeometricLens lens(1024, 1024, test::auto_model());
   const LensResult r = lens.solve({circle(512, 512, 150, zoom, profile)});
   EXPECT_NEAR(r.zoom_measured[0] / zoom, 1.0, 0.10);
   EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
@@ -35,7 +36,7 @@ INSTANTIATE_TEST_SUITE_P(ProfilesAndZooms, ZoomTest,
                                             ::testing::Values(1.5, 2.0, 3.0)));
 
 TEST(GeometricLens, ZoomOneIsTheIdentity) {
-  const GeometricLens lens(300, 200, {});
+  const GeometricLens lens(300, 200, test::auto_model());
   const LensResult r = lens.solve({circle(150, 100, 60, 1.0, Profile::kGaussian)});
   EXPECT_EQ(r.heights[0], 0.0);
   EXPECT_LT((r.warp.source - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
@@ -45,7 +46,7 @@ TEST(GeometricLens, ZoomOneIsTheIdentity) {
 
 // Mirror-symmetric grid: an even number of cells per side (mesh 41 -> 40 cells).
 TEST(GeometricLens, CentredLensOnASquareImageGivesASymmetricWarp) {
-  LensOptions options;
+  LensOptions options = test::auto_model();
   options.mesh = 41;
   const GeometricLens lens(400, 400, options);
   const LensResult r = lens.solve({circle(200, 200, 80, 2.0, Profile::kGaussian)});
@@ -71,14 +72,14 @@ TEST(GeometricLens, CentredLensOnASquareImageGivesASymmetricWarp) {
 }
 
 TEST(GeometricLens, RejectsInvalidLenses) {
-  const GeometricLens lens(100, 100, {});
+  const GeometricLens lens(100, 100, test::auto_model());
   EXPECT_THROW(lens.solve({circle(50, 50, 0, 2, Profile::kGaussian)}), InvalidInput);
   EXPECT_THROW(lens.solve({circle(50, 50, -3, 2, Profile::kGaussian)}), InvalidInput);
   EXPECT_THROW(lens.solve({circle(150, 50, 10, 2, Profile::kGaussian)}), InvalidInput);
   EXPECT_THROW(lens.solve({circle(50, 50, 10, 9, Profile::kGaussian)}), InvalidInput);
   EXPECT_THROW(lens.solve({circle(50, 50, 10, 0.5, Profile::kGaussian)}), InvalidInput);
   EXPECT_THROW(lens.solve({circle(50, 50, std::nan(""), 2, Profile::kGaussian)}), InvalidInput);
-  LensOptions options;
+  LensOptions options = test::auto_model();
   options.mesh = 3;
   EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
   options.mesh = 1001;
@@ -96,7 +97,7 @@ namespace {
 // the same lens (same heights, same grid: subdivision off for the comparison); for a circle (the
 // lift model) and a star polygon (the field model).
 TEST(GeometricLens, UpdateMatchesTheExactSolveWhileTheLensMoves) {
-  LensOptions options;
+  LensOptions options = test::auto_model();
   options.mesh = 60;
   options.subdivision.max_levels = 0;
   auto star = [](const Eigen::Vector2d& centre) {
@@ -130,7 +131,7 @@ TEST(GeometricLens, UpdateMatchesTheExactSolveWhileTheLensMoves) {
 // lens coming and going, a polygon switching the model. Every frame keeps its zoom, folds
 // nothing and ends within 1 % of a fresh exact solve's energy at the same heights.
 TEST(GeometricLens, UpdateSurvivesAnErraticSequence) {
-  LensOptions options;
+  LensOptions options = test::auto_model();
   options.mesh = 50;
   GeometricLens moving(800, 600, options);
   const GeometricLens exact(800, 600, options);
@@ -181,7 +182,7 @@ namespace {
 // Local extent: the patch around the lens is solved, the rest of the image is the identity, and
 // the warp still covers the image exactly once.
 TEST(GeometricLens, LocalExtentSolvesAPatchAndLeavesTheRestAlone) {
-  LensOptions options;
+  LensOptions options = test::auto_model();
   options.mesh = 50;
   options.extent = Extent::kLocal;
   options.extent_factor = 2.0;
@@ -215,7 +216,7 @@ namespace {
 // Several lenses in one solve, each calibrated to its own zoom; overlapping ones combine by max
 // of height without a fold.
 TEST(GeometricLens, SeveralLensesEachReachTheirZoom) {
-  const GeometricLens lens(1024, 1024);
+  const GeometricLens lens(1024, 1024, test::auto_model());
   const std::vector<std::vector<Lens>> cases = {
       {Lens{Region::circle({300, 300}, 110), 2.0}, Lens{Region::circle({720, 700}, 130), 3.0}},
       {Lens{Region::circle({450, 500}, 120), 2.0}, Lens{Region::circle({600, 520}, 120), 2.5}},

@@ -12,6 +12,7 @@
 #include "geolens/geometric_lens.h"
 #include "geolens/grid.h"
 #include "geolens/lift.h"
+#include "support/lens_options.h"
 
 namespace geolens {
 namespace {
@@ -54,7 +55,7 @@ Eigen::Vector2d stretch_at(const WarpMesh& warp, const Eigen::Vector2d& p) {
 
 // The acceptance case for shapes: on the 100 x 100 grid, an L and a star at zoom 2.5.
 TEST(ShapeLens, LAndStarReachTheirZoomWithoutFlips) {
-  const GeometricLens lens(1024, 1024);
+  const GeometricLens lens(1024, 1024, test::auto_model());
   for (const Points& polygon : {kL, star()}) {
     const LensResult r = lens.solve({Lens{Region::polygon(polygon), 2.5}});
     EXPECT_EQ(r.model, LensModel::kField);
@@ -71,7 +72,7 @@ TEST(ShapeLens, LAndStarReachTheirZoomWithoutFlips) {
 // field 2.7 across and 1.3 along at x = 430, y = 450.
 TEST(ShapeLens, TheFieldMagnifiesTheLsJunctionInEveryDirectionTheLiftPinchesIt) {
   const Lens L{Region::polygon(kL), 2.5};
-  LensOptions o;
+  LensOptions o = test::auto_model();
   o.model = LensModel::kField;
   const Eigen::Vector2d field =
       stretch_at(GeometricLens(1024, 1024, o).solve({L}).warp, {430, 570});
@@ -84,7 +85,7 @@ TEST(ShapeLens, TheFieldMagnifiesTheLsJunctionInEveryDirectionTheLiftPinchesIt) 
 }
 
 TEST(ShapeLens, ShapesAndCirclesTogetherEachReachTheirZoom) {
-  const GeometricLens lens(1024, 1024);
+  const GeometricLens lens(1024, 1024, test::auto_model());
   const std::vector<Lens> lenses = {Lens{Region::polygon(kL), 2.0},
                                     Lens{Region::circle({780, 260}, 110), 2.5},
                                     Lens{Region::circle({640, 640}, 90), 1.5}};  // overlaps the L
@@ -96,10 +97,10 @@ TEST(ShapeLens, ShapesAndCirclesTogetherEachReachTheirZoom) {
 }
 
 TEST(ShapeLens, AutoPicksTheLiftForCirclesOnly) {
-  const GeometricLens lens(1024, 1024);
+  const GeometricLens lens(1024, 1024, test::auto_model());
   EXPECT_EQ(lens.solve({Lens{Region::circle({512, 512}, 150)}}).model, LensModel::kLift);
   EXPECT_EQ(lens.solve({Lens{Region::polygon(star())}}).model, LensModel::kField);
-  LensOptions o;
+  LensOptions o = test::auto_model();
   o.model = LensModel::kLift;
   EXPECT_EQ(GeometricLens(1024, 1024, o).solve({Lens{Region::polygon(star())}}).model,
             LensModel::kLift);
@@ -110,7 +111,7 @@ TEST(ShapeLens, AutoPicksTheLiftForCirclesOnly) {
 
 // A dragged polygon lens on the interactive path keeps its zoom and folds nothing.
 TEST(ShapeLens, UpdateFollowsAMovingPolygon) {
-  GeometricLens lens(1024, 1024);
+  GeometricLens lens(1024, 1024, test::auto_model());
   for (int step = 0; step < 6; ++step) {
     Points moved = star();
     for (Eigen::Vector2d& p : moved) p.x() += 4.0 * step;

@@ -292,13 +292,10 @@ int run_compare(const CompareArgs& a) {
   // The geometric lens, then the classic lenses matched to its measured zoom.
   const GeometricLens geometric(source.width, source.height, options);
   const LensResult solved = geometric.solve(lenses);
+  cli::warn_about_zooms(lenses, solved);
   std::vector<CircleLens> targets;
   std::vector<double> zoom_requested, measure_radius;
   for (size_t k = 0; k < lenses.size(); ++k) {
-    if (std::abs(solved.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
-      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << solved.zoom_measured[k]
-                << " of the " << lenses[k].zoom << " requested\n";
-    }
     targets.push_back(
         {lenses[k].region.peak(), lenses[k].region.size(), std::max(1.0, solved.zoom_measured[k])});
     zoom_requested.push_back(lenses[k].zoom);

@@ -1,6 +1,7 @@
 #include "lens_args.h"
 
 #include <cmath>
+#include <iostream>
 
 #include "geolens/errors.h"
 #include "geolens/polygon.h"
@@ -70,9 +71,14 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
   c.add_option("--profile", a.profile, "bump profile: gaussian, sphere or mesa")
       ->capture_default_str();
   c.add_option("--model", a.model,
-               "lift (the paper's: lifted triangles, harmonic texture), field (the lift as a "
-               "zoom field: any shape reaches its zoom) or auto (lift for circles "
-               "only, else field)")
+               "focus (the region magnified as a whole, the context giving way within the "
+               "footprint), lift (the paper's: lifted triangles, harmonic texture), field (the "
+               "lift as a zoom field: any shape reaches its zoom at its peak) or auto (lift for "
+               "circles only, else field)")
+      ->capture_default_str();
+  c.add_option("--footprint", a.footprint,
+               "focus model: how far the context gives way, as the ratio of the footprint's "
+               "reach to the region's from its centre, above the zoom (0: 2 x zoom)")
       ->capture_default_str();
   c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
       ->capture_default_str();
@@ -129,11 +135,25 @@ std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
     std::string zoom_text;
     for (Region& region : parse_regions(spec, zoom_text, source)) {
       const double zoom = zoom_text.empty() ? a.zoom : parse_number(zoom_text, "zoom");
-      lenses.push_back(Lens{std::move(region), zoom, profile});
+      lenses.push_back(Lens{std::move(region), zoom, profile, a.footprint});
       validate_lens(lenses.back(), source.width, source.height);
     }
   }
   return lenses;
+}
+
+void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    if (k < result.zoom_fits.size() && result.zoom_fits[k] < lenses[k].zoom) {
+      std::cerr << "geolens: warning: lens " << k + 1 << " does not fit at zoom " << lenses[k].zoom
+                << " where it is: the largest zoom that fits is " << result.zoom_fits[k]
+                << " (solved at that zoom; a smaller lens, or one farther from the image border, "
+                   "fits more)\n";
+    } else if (std::abs(result.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
+      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << result.zoom_measured[k]
+                << " of the " << lenses[k].zoom << " requested\n";
+    }
+  }
 }
 
 }  // namespace geolens::cli

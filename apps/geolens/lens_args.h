@@ -15,15 +15,14 @@ struct LensArgs {
   std::vector<std::string> lenses;
   double zoom = 2.0;
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
-              model = "auto", boundary = "sliding", extent = "global";
-  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5;
+              model = "focus", boundary = "sliding", extent = "global";
+  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5, footprint = 0;
   int mesh = 100, max_iterations = 100, subdivide = 0;
 };
 
-/// Registers --lens (required), --zoom, --profile, --mesh, --subdivide, --metric, --alpha,
-/// --weights,
-/// --texture, --boundary, --extent, --extent-factor, --tolerance and --max-iterations on
-/// `command`.
+/// Registers --lens (required), --zoom, --model, --footprint, --profile, --mesh, --subdivide,
+/// --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor, --tolerance
+/// and --max-iterations on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
 
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.
@@ -34,5 +33,9 @@ LensOptions parse_options(const LensArgs& args);
 /// of non-zero pixels is one lens).
 /// Throws InvalidInput naming the offending --lens value.
 std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
+
+/// Prints a warning on stderr for each lens that does not fit where it is (the largest zoom
+/// that fits, for the focus model) or misses its requested zoom by more than 10 %.
+void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result);
 
 }  // namespace geolens::cli

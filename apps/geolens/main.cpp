@@ -121,12 +121,7 @@ int run_magnify(const MagnifyArgs& a) {
 
   const GeometricLens lens(source.width, source.height, options);
   const LensResult result = lens.solve(lenses);
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    if (std::abs(result.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
-      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << result.zoom_measured[k]
-                << " of the " << lenses[k].zoom << " requested\n";
-    }
-  }
+  cli::warn_about_zooms(lenses, result);
   const DistortionSummary distortion = summarize(measure_triangles(result.warp));
   if (distortion.flipped > 0) {
     std::cerr << "geolens: warning: " << distortion.flipped

@@ -1,5 +1,8 @@
 #include "stats.h"
 
+#include "geolens/focus_lens.h"
+#include "geolens/focus_measure.h"
+
 namespace geolens::cli {
 
 nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& options,
@@ -28,18 +31,30 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
                       {"boundary", to_string(options.flatten.boundary)},
                       {"tolerance", options.flatten.tolerance},
                       {"max_iterations", options.flatten.max_iterations}};
+  const std::vector<FocusMeasure> foci =
+      measure_foci(result.warp, measure_triangles(result.warp), lenses);
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < lenses.size(); ++k) {
     const Region& region = lenses[k].region;
     const Eigen::AlignedBox2d box = region.bounds();
-    nlohmann::json lens = {{"kind", to_string(region.kind())},
-                           {"bbox", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}},
-                           {"peak", {region.peak().x(), region.peak().y()}},
-                           {"size", region.size()},
-                           {"profile", to_string(lenses[k].profile)},
-                           {"zoom_requested", lenses[k].zoom},
-                           {"zoom_measured", result.zoom_measured[k]},
-                           {"height", result.heights[k]}};
+    nlohmann::json lens = {
+        {"kind", to_string(region.kind())},
+        {"bbox", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}},
+        {"peak", {region.peak().x(), region.peak().y()}},
+        {"size", region.size()},
+        {"profile", to_string(lenses[k].profile)},
+        {"zoom_requested", lenses[k].zoom},
+        {"zoom_measured", result.zoom_measured[k]},
+        {"height", result.heights[k]},
+        {"footprint", footprint_ratio(lenses[k])},
+        {"focus",
+         {{"zoom", foci[k].zoom},
+          {"uniformity", foci[k].uniformity},
+          {"shape_mean", foci[k].shape_mean},
+          {"shape_max", foci[k].shape_max}}},
+        {"footprint_radius", foci[k].footprint_radius},
+        {"displacement_beyond_footprint", foci[k].displacement_beyond_footprint}};
+    if (k < result.zoom_fits.size()) lens["zoom_fit"] = result.zoom_fits[k];
     if (region.kind() == RegionKind::kCircle) {
       lens["center"] = {region.peak().x(), region.peak().y()};
       lens["radius"] = region.size();

@@ -73,6 +73,23 @@ struct FlattenOptions {
 /// Throws InvalidInput unless the options are in range.
 void validate(const FlattenOptions& options);
 
+/// Per-vertex constraints of focus lenses (LensModel::kFocus), which replace the metric target:
+/// - a triangle whose three corners are in the focus of the same lens is asked to be its
+///   (scaled) standard triangle exactly, translated but not rotated, with `focus_weight` times
+///   its weight: the focus is magnified uniformly and keeps its orientation;
+/// - any other triangle is asked to keep its shape distortion s1 / s2 at most the mean
+///   `anisotropy` of its corners: its target is the closest matrix with that bound (the
+///   projection of its singular values onto the cone s2 <= s1 <= K s2, after Lipman 2012's
+///   bounded distortion maps), so the context may give way anisotropically, as it must;
+/// - a pinned vertex stays where it is (beyond every footprint).
+struct FocusConstraints {
+  std::vector<int> focus;      ///< #V index of the lens whose focus holds the vertex, or -1
+  std::vector<char> pinned;    ///< #V 1: the vertex keeps its position
+  Eigen::VectorXd anisotropy;  ///< #V bound K >= 1 on s1 / s2 outside the foci
+  double focus_weight = 1000;  ///< > 0
+  bool empty() const { return focus.empty(); }
+};
+
 struct FlattenResult {
   Eigen::MatrixX2d X;          ///< #V x 2 flattened positions, pixels (before framing)
   std::vector<double> energy;  ///< energy of the initial guess, then after each global step
@@ -100,9 +117,11 @@ class Flattener {
   /// @param sides  #V Side flags of the grid (border vertices), see grid.h
   /// @param log_scale  #V natural log of the magnification asked at each vertex (Standard::kScaled
   ///                   only; empty otherwise)
+  /// @param focus  focus-lens constraints (empty: none, the metric applies everywhere)
   Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F, const Eigen::VectorXd& level,
             const std::vector<uint8_t>& sides, const FlattenOptions& options,
-            const Eigen::VectorXd& log_scale = Eigen::VectorXd());
+            const Eigen::VectorXd& log_scale = Eigen::VectorXd(),
+            const FocusConstraints& focus = {});
   ~Flattener();
 
   /// Refits the flattener to a new lift of the same mesh (same faces, sides, options): the
@@ -111,13 +130,19 @@ class Flattener {
   /// @param V3     #V x 3 lifted vertices, pixels (x, y also become the fixed values)
   /// @param level  #V normalized heights in [0, 1]
   /// @param log_scale  as in the constructor
+  /// @param focus  as in the constructor, with the same pinned vertices
   void reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
-                const Eigen::VectorXd& log_scale = Eigen::VectorXd());
+                const Eigen::VectorXd& log_scale = Eigen::VectorXd(),
+                const FocusConstraints& focus = {});
 
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
   /// `guess` (optional, #V x 2) starts instead unless it folds a triangle.
   FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr) const;
+
+  /// Whether X (#V x 2) can start a flip-safe solve as it is: no triangle folded or degenerate,
+  /// every fixed coordinate at its value.
+  bool admissible(const Eigen::MatrixX2d& X) const;
 
   /// E(X) with the metric targets fitted to X (the local step), see above.
   double energy(const Eigen::MatrixX2d& X) const;
@@ -131,10 +156,15 @@ class Flattener {
     Eigen::Matrix2d S;      // the standard edge matrix
     double area2c;          // 2 A_t c_t: the triangle's weight in ||J - M||_F^2
     Eigen::Vector3d w;      // w for the edge opposite each corner
+    // Focus constraints: the target is the identity (kFocus), or J with s1 / s2 bounded by
+    // `anisotropy` (kBounded), or the metric's (kMetric).
+    enum Kind : uint8_t { kMetric, kFocus, kBounded } kind = kMetric;
+    double anisotropy = 1;
   };
   void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
-                const Eigen::VectorXd& log_scale);
+                const Eigen::VectorXd& log_scale, const FocusConstraints& focus);
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
+  Eigen::Matrix2d target(const Triangle& t, const Eigen::Matrix2d& J) const;
   // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
   Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;
@@ -147,6 +177,7 @@ class Flattener {
   std::vector<int> entry_position_;  // value index in L_ of each assembled entry
   // The corners (3 f + k) at each vertex v: corner_[corner_start_[v] .. corner_start_[v + 1]).
   std::vector<int> corner_start_, corner_;
+  std::vector<char> fix_x_, fix_y_;  // #V: the coordinate keeps its fixed value
   // One solver for both coordinates, or (sliding) one per coordinate.
   std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
 };

@@ -31,6 +31,11 @@ std::string to_string(Extent extent);
 
 /// How the lift becomes a magnification (docs/design.md, "Lens models").
 enum class LensModel {
+  /// The region is the focus: magnified as a whole by its zoom (a similarity, translated to fit
+  /// but not rotated), the context giving way within the lens's footprint, with its shape
+  /// distortion bounded, and unchanged beyond (focus_lens.h). The solved area is the footprints'
+  /// bounding box, so the mesh moves with the lens.
+  kFocus,
   /// The paper's: the flattening keeps the shapes of the lifted triangles and the texture is
   /// re-mapped harmonically onto the bump. A long region's lift is a ridge, magnified across
   /// only.
@@ -43,14 +48,14 @@ enum class LensModel {
   kField,
   kAuto,  ///< kLift when every lens is a circle, else kField
 };
-LensModel parse_lens_model(const std::string& name);  ///< "lift" | "field" | "auto"
+LensModel parse_lens_model(const std::string& name);  ///< "focus" | "lift" | "field" | "auto"
 std::string to_string(LensModel model);
 
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
-  Extent extent = Extent::kGlobal;
-  double extent_factor = 2.5;  ///< local patch half-side over the lens size (radius), > 1
-  LensModel model = LensModel::kAuto;
+  Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
+  double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
+  LensModel model = LensModel::kFocus;
   TextureWeights texture = TextureWeights::kCotan;
   SubdivisionOptions subdivision;
   FlattenOptions flatten;
@@ -76,8 +81,12 @@ struct LensResult {
   Eigen::MatrixX3d lifted;             ///< #V x 3 the lifted mesh of the final solve, pixels
   Eigen::MatrixX2d flat;               ///< #V x 2 the flattening before framing, pixels
   FlattenResult flattening;            ///< iterations and energies of the final solve
-  std::vector<double> heights;         ///< per lens: calibrated centre height h0, pixels
-  std::vector<double> zoom_measured;   ///< per lens: magnification at its region's peak
+  /// per lens: calibrated centre height h0, pixels; for kFocus the log zoom of its focus
+  std::vector<double> heights;
+  std::vector<double> zoom_measured;  ///< per lens: magnification at its region's peak
+  /// per lens (kFocus): the largest zoom that fits where the lens is (fitting_zoom in
+  /// focus_lens.h); a lens that asks for more is solved at this zoom. Empty for other models.
+  std::vector<double> zoom_fits;
   /// The cotan texture map folded and was redone with non-negative weights (cotan+).
   bool texture_fallback = false;
   int solves = 0;  ///< full solves made by the calibration
@@ -114,10 +123,14 @@ class GeometricLens {
  private:
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
+  // kFocus: the lenses with each zoom lowered to the largest that fits (footprints kept), and
+  // those zooms in `fits`; other models: the lenses as they are.
+  std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits) const;
   FlattenOptions flatten_options(LensModel model) const;
   Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
                           const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
-                          std::chrono::steady_clock::time_point start, LensResult& r) const;
+                          std::chrono::steady_clock::time_point start, LensResult& r,
+                          FocusConstraints& focus) const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
   LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
@@ -133,7 +146,8 @@ class GeometricLens {
     Eigen::MatrixX2d change;     // what the last update changed in it (#V x 2, or empty)
     Eigen::MatrixX2d predicted;  // flat + change: the candidate start of this update's first solve
     Eigen::AlignedBox2d box;     // the area it covers
-    LensModel model = LensModel::kAuto;  // the flattener's
+    std::vector<char> pinned;    // the flattener's pinned vertices (kFocus)
+    LensModel model = LensModel::kFocus;  // the flattener's
     std::vector<Lens> lenses;
     LensResult result;
   } cache_;

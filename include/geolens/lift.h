@@ -14,10 +14,13 @@ struct Lens {
   Region region;
   double zoom = 2.0;  ///< requested magnification at the region's peak, in [1, 8]
   Profile profile = Profile::kGaussian;
+  /// LensModel::kFocus: how far the context may give way, as the ratio of the footprint's reach
+  /// to the region's from its peak (focus_lens.h); 0 for the default, 2 zoom. Else > zoom, <= 100.
+  double footprint = 0;
 };
 
 /// Throws InvalidInput unless the lens is usable on a width x height image: zoom in [1, 8], a
-/// circle's centre or every polygon vertex inside the image.
+/// circle's centre or every polygon vertex inside the image, footprint 0 or in (zoom, 100].
 void validate_lens(const Lens& lens, double width, double height);
 
 /// The lifted mesh: the grid's vertices with heights.

@@ -47,6 +47,13 @@ class Region {
   double size() const;
   double depth(const Eigen::Vector2d& p) const;
   double thickness(const Eigen::Vector2d& p) const;
+  /// Distance from p to the region, pixels: 0 inside, the Euclidean distance to the nearest
+  /// point of the region outside (exact for circles and polygons; to the nearest pixel square
+  /// of a mask, up to rounding).
+  double distance(const Eigen::Vector2d& p) const;
+  /// The largest distance from peak() to a point of the region, pixels: the radius of a
+  /// circle, half the length of a thin strip measured from its middle.
+  double reach() const;
   /// For polygons: the vertices; empty otherwise.
   const std::vector<Eigen::Vector2d>& vertices() const;
 

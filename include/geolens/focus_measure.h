@@ -1,0 +1,34 @@
+#pragma once
+// What a user sees of each lens: how its focus is magnified, how far the context moves.
+
+#include <vector>
+
+#include "geolens/distortion.h"
+#include "geolens/lift.h"
+#include "geolens/warp_mesh.h"
+
+namespace geolens {
+
+/// Per lens, measured on a WarpMesh whose screen is framed at the source's size.
+struct FocusMeasure {
+  /// Over the focus (the triangles whose source centroid lies in the region): the area-weighted
+  /// mean magnification, max / min magnification (1 = uniform), and the shape distortion
+  /// s1 / s2 - 1, area-weighted mean and max.
+  double zoom = 0, uniformity = 0, shape_mean = 0, shape_max = 0;
+  /// sqrt(A / pi), A the source area (pixels^2) of the triangles nearest this lens (by distance
+  /// to its region) whose magnification departs from 1 by more than 5 % or whose shape
+  /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
+  double footprint_radius = 0;
+  /// The largest |screen - source| (pixels) of a mesh vertex at least footprint_margin(lens)
+  /// from the region and nearest this lens: 0 when everything beyond the footprint is left in
+  /// place.
+  double displacement_beyond_footprint = 0;
+};
+
+/// Measures every lens on `warp` (its source in source pixels, its screen framed at the source's
+/// size), with `measures` = measure_triangles(warp). Throws InvalidInput if a region holds no
+/// triangle centroid.
+std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDistortion& measures,
+                                       const std::vector<Lens>& lenses);
+
+}  // namespace geolens

@@ -1,0 +1,198 @@
+// The focus lens: the region given is magnified as a whole, uniformly and without rotation, the
+// context gives way within the footprint, and nothing beyond it moves.
+
+#include "geolens/focus_lens.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "geolens/distortion.h"
+#include "geolens/errors.h"
+#include "geolens/flatten.h"
+#include "geolens/focus_measure.h"
+#include "geolens/geometric_lens.h"
+#include "geolens/grid.h"
+#include "geolens/image.h"
+
+namespace geolens {
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+
+Points translated(Points p, const Eigen::Vector2d& by) {
+  for (Eigen::Vector2d& v : p) v += by;
+  return p;
+}
+
+// Shapes around the origin: an L of 60 px arms in a 200 px box, a five-pointed star of outer
+// radius 120 px, a 400 x 40 px strip (10:1).
+const Points kL = {{-100, -100}, {-40, -100}, {-40, 40}, {100, 40}, {100, 100}, {-100, 100}};
+const Points kStrip = {{-200, -20}, {200, -20}, {200, 20}, {-200, 20}};
+Points star() {
+  Points p;
+  for (int k = 0; k < 10; ++k) {
+    const double r = k % 2 == 0 ? 120 : 0.382 * 120,
+                 a = std::numbers::pi / 2 + k * std::numbers::pi / 5;
+    p.emplace_back(r * std::cos(a), -r * std::sin(a));
+  }
+  return p;
+}
+
+TEST(FocusLens, RadialBoundIsThePowerLawsDistortion) {
+  EXPECT_NEAR(radial_distortion_bound(2, 4), 1.0, 1e-12);  // k = 1 / 2
+  EXPECT_NEAR(radial_distortion_bound(3, 9), 1.0, 1e-12);
+  EXPECT_NEAR(radial_distortion_bound(2, 8), 0.5, 1e-12);  // k = 2 / 3
+  EXPECT_EQ(radial_distortion_bound(1, 2), 0.0);
+  EXPECT_TRUE(std::isinf(radial_distortion_bound(4, 4)));
+  EXPECT_THROW(radial_distortion_bound(2, 1), InvalidInput);
+}
+
+TEST(FocusLens, RegionsMeasureDistanceAndReach) {
+  const Region c = Region::circle({100, 100}, 50);
+  EXPECT_DOUBLE_EQ(c.distance({180, 100}), 30);
+  EXPECT_EQ(c.distance({110, 90}), 0);
+  EXPECT_DOUBLE_EQ(c.reach(), 50);
+  const Region square = Region::polygon({{100, 100}, {200, 100}, {200, 200}, {100, 200}});
+  EXPECT_NEAR(square.distance({250, 150}), 50, 1e-9);
+  EXPECT_NEAR(square.distance({230, 240}), 50, 1e-9);
+  EXPECT_EQ(square.distance({150, 150}), 0);
+  EXPECT_NEAR(square.reach(), (square.peak() - Eigen::Vector2d(100, 100)).norm(), 1.5);
+  Image mask(64, 64, 1);
+  for (int y = 10; y < 30; ++y)
+    for (int x = 20; x < 40; ++x) mask.at(x, y)[0] = 255;
+  const Region m = Region::from_mask(mask).front();
+  EXPECT_EQ(m.distance({25.5, 15.5}), 0);
+  EXPECT_NEAR(m.distance({50, 20}), 10, 1e-9);  // the blob's pixels end at x = 40
+  EXPECT_NEAR(m.distance({43, 34}), 5, 1e-9);   // 3-4-5 from the corner (40, 30)
+  EXPECT_GT(m.reach(), 10 * std::numbers::sqrt2);
+}
+
+// A lens of `shape` centred in an image big enough for its footprint at `zoom`, solved with the
+// defaults: the focus model.
+struct Solved {
+  Lens lens;
+  LensResult result;
+  FocusMeasure focus;
+  DistortionSummary summary;
+};
+Solved solve_centred(const Points& shape, double zoom, double radius = 0) {
+  const Region probe = radius > 0 ? Region::circle({0, 0}, radius) : Region::polygon(shape);
+  const double side = std::ceil(2 * (2 * zoom * probe.reach()) + 200);
+  const Eigen::Vector2d centre(side / 2, side / 2);
+  Lens lens{radius > 0 ? Region::circle(centre, radius)
+                       : Region::polygon(translated(shape, centre - probe.peak())),
+            zoom};
+  const GeometricLens geometric(side, side);
+  Solved s{lens, geometric.solve({lens}), {}, {}};
+  const TriangleDistortion measures = measure_triangles(s.result.warp);
+  s.focus = measure_foci(s.result.warp, measures, {lens}).front();
+  s.summary = summarize(measures);
+  return s;
+}
+
+void expect_uniform_focus(const Solved& s, double zoom) {
+  EXPECT_EQ(s.result.model, LensModel::kFocus);
+  EXPECT_NEAR(s.focus.zoom / zoom, 1.0, 0.05);
+  EXPECT_LE(s.focus.uniformity, 1.1);
+  EXPECT_LE(s.focus.shape_max, 0.1);
+  EXPECT_LE(s.focus.shape_mean, s.focus.shape_max);
+  EXPECT_EQ(s.summary.flipped, 0);
+  EXPECT_EQ(s.focus.displacement_beyond_footprint, 0.0);
+  EXPECT_GT(s.focus.footprint_radius, s.lens.region.reach());
+}
+
+class FocusZoom : public ::testing::TestWithParam<double> {};
+
+TEST_P(FocusZoom, CircleIsMagnifiedUniformlyAndNothingBeyondItsFootprintMoves) {
+  expect_uniform_focus(solve_centred({}, GetParam(), 150), GetParam());
+}
+TEST_P(FocusZoom, LIsMagnifiedAsAWhole) {
+  expect_uniform_focus(solve_centred(kL, GetParam()), GetParam());
+}
+TEST_P(FocusZoom, StarIsMagnifiedAsAWhole) {
+  expect_uniform_focus(solve_centred(star(), GetParam()), GetParam());
+}
+TEST_P(FocusZoom, TenToOneStripIsMagnifiedAlongAsMuchAsAcross) {
+  expect_uniform_focus(solve_centred(kStrip, GetParam()), GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Zooms, FocusZoom, ::testing::Values(2.0, 3.0, 4.0));
+
+// A mask's blob (a disk with a notch) the same way.
+TEST(FocusLens, MaskBlobIsMagnifiedAsAWhole) {
+  for (const double zoom : {2.0, 3.0, 4.0}) {
+    const int side = int(2 * 2 * zoom * 120 + 200);  // the reach from the peak is below 120
+    Image mask(side, side, 1);
+    const double c = side / 2.0;
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x)
+        if (std::hypot(x + 0.5 - c, y + 0.5 - c) < 80 && !(x > c && std::abs(y + 0.5 - c) < 15))
+          mask.at(x, y)[0] = 255;
+    const Lens lens{Region::from_mask(mask).front(), zoom};
+    const LensResult r = GeometricLens(side, side).solve({lens});
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    const Solved s{lens, r, measure_foci(r.warp, measures, {lens}).front(), summarize(measures)};
+    SCOPED_TRACE(zoom);
+    expect_uniform_focus(s, zoom);
+  }
+}
+
+// Near a border the ring is shorter on that side: a lens asks for no more than fits there, and a
+// region over the image's corner is magnified about the corner, which stays.
+TEST(FocusLens, ALensAtTheCornerKeepsTheCornerAndFitsItsZoom) {
+  const Lens lens{Region::circle({0, 0}, 100), 2.0};
+  const GeometricLens geometric(1024, 1024);
+  const LensResult r = geometric.solve({lens});
+  ASSERT_EQ(r.zoom_fits.size(), 1u);
+  EXPECT_GE(r.zoom_fits[0], 2.0);
+  const FocusMeasure f = measure_foci(r.warp, measure_triangles(r.warp), {lens}).front();
+  EXPECT_NEAR(f.zoom, 2.0, 0.1);
+  EXPECT_LE(f.uniformity, 1.1);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  // The output still fills the frame: the image's corners stay where they are.
+  EXPECT_EQ(r.warp.screen.colwise().minCoeff(), Eigen::RowVector2d(0, 0));
+  EXPECT_EQ(r.warp.screen.colwise().maxCoeff(), Eigen::RowVector2d(1024, 1024));
+}
+
+TEST(FocusLens, ALensThatDoesNotFitIsSolvedAtTheZoomThatFits) {
+  const Lens lens{Region::circle({300, 300}, 200), 3.0};
+  const LensResult r = GeometricLens(1024, 1024).solve({lens});
+  ASSERT_EQ(r.zoom_fits.size(), 1u);
+  EXPECT_LT(r.zoom_fits[0], 3.0);
+  EXPECT_NEAR(r.zoom_measured[0], std::max(1.0, r.zoom_fits[0]), 0.05 * r.zoom_fits[0]);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+}
+
+TEST(FocusLens, FootprintMustExceedTheZoom) {
+  Lens lens{Region::circle({500, 500}, 50), 2.0};
+  lens.footprint = 2.0;
+  EXPECT_THROW(GeometricLens(1024, 1024).solve({lens}), InvalidInput);
+  lens.footprint = 6.0;
+  const LensResult r = GeometricLens(1024, 1024).solve({lens});
+  EXPECT_NEAR(r.zoom_measured[0], 2.0, 0.05);
+  // A wider footprint spreads the same compression thinner.
+  lens.footprint = 3.0;
+  const LensResult tight = GeometricLens(1024, 1024).solve({lens});
+  EXPECT_LT(summarize(measure_triangles(r.warp)).conformal_max,
+            summarize(measure_triangles(tight.warp)).conformal_max);
+}
+
+// The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
+TEST(FocusLens, UpdateFollowsADraggedLens) {
+  GeometricLens geometric(1024, 1024);
+  for (int step = 0; step < 6; ++step) {
+    const Lens lens{Region::circle({440.0 + 12 * step, 500.0 + 5 * step}, 80), 2.0};
+    const LensResult& r = geometric.update({lens});
+    const FocusMeasure f = measure_foci(r.warp, measure_triangles(r.warp), {lens}).front();
+    SCOPED_TRACE(step);
+    EXPECT_NEAR(f.zoom, 2.0, 0.1);
+    EXPECT_LE(f.uniformity, 1.1);
+    EXPECT_EQ(f.displacement_beyond_footprint, 0.0);
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  }
+}
+
+}  // namespace
+}  // namespace geolens
