@@ -316,6 +316,16 @@ bool Flattener::admissible(const Eigen::MatrixX2d& X) const {
   return true;
 }
 
+void Flattener::admit_anisotropy(const Eigen::MatrixX2d& X) {
+  require(X.rows() == rest_.rows(), "Flattener::admit_anisotropy", "one row per vertex expected");
+  for (size_t f = 0; f < triangles_.size(); ++f) {
+    Triangle& t = triangles_[f];
+    if (t.kind != Triangle::kBounded) continue;
+    const SignedSvd2 d = signed_svd(jacobian(t, int(f), X));
+    if (d.s2 > 0) t.anisotropy = std::max(t.anisotropy, d.s1 / d.s2);
+  }
+}
+
 double Flattener::energy(const Eigen::MatrixX2d& X) const {
   double e = 0;
   for (size_t f = 0; f < triangles_.size(); ++f) {

@@ -27,24 +27,27 @@ Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, do
   return Eigen::Vector2d(std::max(x, 0.0), std::max(y, 0.0));
 }
 
-// One lens's ring: the power law about `centre` between the focus (radius `inner` from it) and
-// the footprint's edge, which along each ray is `outer` from it or the image border if nearer.
+// One focus group's ring: the power law about `centre` between the focus (radius `inner` from
+// it) and the footprint's edge, which along each ray is `outer` from it or the image border if
+// nearer.
 struct Ring {
   Eigen::Vector2d centre;
   double inner, outer, log_zoom;
 
-  Ring(const Lens& lens, double log_zoom_, double cell, double width, double height)
-      : log_zoom(log_zoom_) {
+  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell, double width,
+       double height)
+      : log_zoom(group.log_zoom) {
     const double near = near_distance(cell);
     // A region over an image side is magnified about a point on that side, so the side stays.
-    const Eigen::AlignedBox2d b = lens.region.bounds();
-    centre = lens.region.peak();
+    Eigen::AlignedBox2d b;
+    for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
+    centre = group.centre;
     if (b.min().x() <= 0) centre.x() = 0;
     if (b.max().x() >= width) centre.x() = width;
     if (b.min().y() <= 0) centre.y() = 0;
     if (b.max().y() >= height) centre.y() = height;
-    inner = lens.region.reach() + (centre - lens.region.peak()).norm() + near;
-    outer = lens.region.reach() + footprint_margin(lens) - near;
+    inner = group.reach + (centre - group.centre).norm() + near;
+    outer = group.reach + group.margin - near;
   }
   // The footprint's edge along the ray with unit direction u, from the centre: `outer`, or short
   // of the image border where that is nearer. A smooth minimum (the 4-norm of the reciprocals)
@@ -70,6 +73,49 @@ double footprint_margin(const Lens& lens) {
   return (footprint_ratio(lens) - 1) * lens.region.reach();
 }
 
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
+                                     const std::vector<double>& log_zooms) {
+  require(log_zooms.size() == lenses.size(), "focus_groups", "one log zoom per lens expected");
+  const size_t n = lenses.size();
+  // Union-find over the pairs whose magnified foci (disks of zoom x reach) overlap.
+  std::vector<size_t> root(n);
+  for (size_t k = 0; k < n; ++k) root[k] = k;
+  auto find = [&](size_t k) {
+    while (root[k] != k) k = root[k] = root[root[k]];
+    return k;
+  };
+  auto magnified = [&](size_t k) { return std::exp(log_zooms[k]) * lenses[k].region.reach(); };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      if ((lenses[i].region.peak() - lenses[j].region.peak()).norm() < magnified(i) + magnified(j))
+        root[find(i)] = find(j);
+  std::vector<FocusGroup> groups;
+  std::vector<int> index(n, -1);
+  for (size_t k = 0; k < n; ++k) {
+    int& g = index[find(k)];
+    if (g < 0) {
+      g = int(groups.size());
+      groups.emplace_back();
+    }
+    groups[size_t(g)].lenses.push_back(k);
+  }
+  for (FocusGroup& g : groups) {
+    Eigen::AlignedBox2d peaks;
+    double ratio = 0;
+    for (size_t k : g.lenses) {
+      peaks.extend(lenses[k].region.peak());
+      ratio = std::max(ratio, footprint_ratio(lenses[k]));
+      g.log_zoom = std::max(g.log_zoom, log_zooms[k]);
+    }
+    g.centre = g.lenses.size() == 1 ? lenses[g.lenses[0]].region.peak() : peaks.center();
+    for (size_t k : g.lenses)
+      g.reach =
+          std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
+    g.margin = (ratio - 1) * g.reach;
+  }
+  return groups;
+}
+
 double radial_distortion_bound(double zoom, double ratio) {
   require(std::isfinite(zoom) && zoom >= 1 && std::isfinite(ratio) && ratio > 1,
           "radial_distortion_bound",
@@ -79,18 +125,37 @@ double radial_distortion_bound(double zoom, double ratio) {
   return k > 0 ? 1 / k - 1 : std::numeric_limits<double>::infinity();
 }
 
-double fitting_zoom(const Lens& lens, double cell, double width, double height) {
-  const Ring ring(lens, std::log(lens.zoom), cell, width, height);
-  double ratio = std::numeric_limits<double>::infinity();
-  constexpr int kRays = 720;
-  for (int k = 0; k < kRays; ++k) {
-    const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
-    const Eigen::Vector2d u(std::cos(a), std::sin(a));
-    if (ray_exits(ring.centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
-    ratio = std::min(ratio, ring.edge(u, width, height) / ring.inner);
+std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double width,
+                                  double height) {
+  std::vector<double> log_zooms;
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  std::vector<double> fits(lenses.size());
+  for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
+    const Ring ring(group, lenses, cell, width, height);
+    double ratio = std::numeric_limits<double>::infinity();
+    constexpr int kRays = 720;
+    for (int k = 0; k < kRays; ++k) {
+      const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      if (ray_exits(ring.centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
+      ratio = std::min(ratio, ring.edge(u, width, height) / ring.inner);
+    }
+    for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
   }
-  return ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
+  return fits;
 }
+
+namespace {
+
+// The distance from p to the nearest region of `group`, pixels.
+double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
+                      const Eigen::Vector2d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t k : group.lenses) d = std::min(d, lenses[k].region.distance(p));
+  return d;
+}
+
+}  // namespace
 
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double width,
@@ -98,17 +163,15 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   require(log_zooms.size() == lenses.size(), "focus_field", "one log zoom per lens expected");
   require(std::isfinite(cell) && cell > 0 && std::isfinite(slack) && slack >= 1, "focus_field",
           "cell must be > 0 and slack >= 1");
+  for (double z : log_zooms)
+    require(std::isfinite(z) && z >= 0, "focus_field",
+            "log zoom must be finite and >= 0, got " + std::to_string(z));
   const Eigen::Index n = V.rows();
   const double near = near_distance(cell);
-  std::vector<double> margin(lenses.size());
-  std::vector<Ring> rings;
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    require(std::isfinite(log_zooms[k]) && log_zooms[k] >= 0, "focus_field",
-            "log zoom must be finite and >= 0, got " + std::to_string(log_zooms[k]));
-    margin[k] = footprint_margin(lenses[k]);
-    rings.emplace_back(lenses[k], log_zooms[k], cell, width, height);
-  }
   FocusField out;
+  out.groups = focus_groups(lenses, log_zooms);
+  std::vector<Ring> rings;
+  for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, width, height);
   FocusConstraints& c = out.constraints;
   c.focus.assign(size_t(n), -1);
   c.pinned.assign(size_t(n), 1);
@@ -118,21 +181,21 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   parallel_for(size_t(n), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
-      // The lens whose footprint p is deepest in (distance over margin), and the nearest focus.
+      // The group whose footprint p is deepest in (distance over margin), and the nearest focus.
       double nearest = std::numeric_limits<double>::infinity(), deepest = nearest;
       int owner = -1, closest = -1;
-      for (size_t k = 0; k < lenses.size(); ++k) {
-        const double d = lenses[k].region.distance(p);
-        if (d < nearest) nearest = d, closest = int(k);
-        if (d / margin[k] < deepest) deepest = d / margin[k], owner = int(k);
-        if (d < margin[k] - near) c.pinned[i] = 0;
+      for (size_t g = 0; g < out.groups.size(); ++g) {
+        const double d = group_distance(out.groups[g], lenses, p);
+        if (d < nearest) nearest = d, closest = int(g);
+        if (d / out.groups[g].margin < deepest) deepest = d / out.groups[g].margin, owner = int(g);
+        if (d < out.groups[g].margin - near) c.pinned[i] = 0;
       }
       if (nearest <= near) {
         c.focus[i] = closest;
-        out.log_scale(Eigen::Index(i)) = log_zooms[size_t(closest)];
+        out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
       }
       if (owner >= 0) {
-        // The radial bound along this vertex's ray of its lens, with the slack; a ray too short
+        // The radial bound along this vertex's ray of its group, with the slack; a ray too short
         // for the zoom has no radial solution: the bound then only keeps the context from
         // folding over itself (at most 20, a sliver).
         const Ring& ring = rings[size_t(owner)];
@@ -148,22 +211,20 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 }
 
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
-                             const std::vector<double>& log_zooms, double cell, double width,
+                             const std::vector<FocusGroup>& groups, double cell, double width,
                              double height) {
-  require(log_zooms.size() == lenses.size(), "focus_start", "one log zoom per lens expected");
   const double near = near_distance(cell);
   Eigen::MatrixX2d X = V;
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    if (log_zooms[k] <= 0) continue;
-    const Region& region = lenses[k].region;
-    const Ring ring(lenses[k], log_zooms[k], cell, width, height);
+  for (const FocusGroup& group : groups) {
+    if (group.log_zoom <= 0) continue;
+    const Ring ring(group, lenses, cell, width, height);
     parallel_for(size_t(V.rows()), [&](size_t begin, size_t end) {
       for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
         const Eigen::Vector2d q = X.row(i).transpose();
         const Eigen::Vector2d u = q - ring.centre;
         if (u.norm() == 0) continue;
         const double edge = ring.edge(u.normalized(), width, height);
-        const double s = ring.inner + std::max(region.distance(q) - near, 0.0);
+        const double s = ring.inner + std::max(group_distance(group, lenses, q) - near, 0.0);
         // On or beyond the footprint's edge (an image border point lies on its ray's edge).
         if (s >= edge * (1 - 1e-12)) continue;
         const double g = std::exp(ring.log_zoom * std::log(edge / s) / std::log(edge / ring.inner));
@@ -174,11 +235,13 @@ Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>&
   return X;
 }
 
-FlattenResult flatten_focus(const Flattener& flattener, const Eigen::MatrixX2d& V,
-                            const std::vector<Lens>& lenses, const std::vector<double>& log_zooms,
+FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
                             double cell, double width, double height) {
-  const Eigen::MatrixX2d start = focus_start(V, lenses, log_zooms, cell, width, height);
-  return flattener.admissible(start) ? flattener.solve(start) : flattener.solve(V);
+  const Eigen::MatrixX2d start = focus_start(V, lenses, groups, cell, width, height);
+  if (!flattener.admissible(start)) return flattener.solve(V);
+  flattener.admit_anisotropy(start);
+  return flattener.solve(start);
 }
 
 }  // namespace geolens

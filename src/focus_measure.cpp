@@ -54,10 +54,17 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     lowest[k] = std::min(lowest[k], m);
     highest[k] = std::max(highest[k], m);
   }
+  // Beyond the footprints: farther from every region than its focus group's margin.
+  std::vector<double> log_zooms, margin(n);
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  for (const FocusGroup& g : focus_groups(lenses, log_zooms))
+    for (size_t k : g.lenses) margin[k] = g.margin;
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose();
-    const auto [k, distance] = nearest_lens(lenses, p);
-    if (distance < footprint_margin(lenses[k])) continue;
+    bool beyond = true;
+    for (size_t j = 0; j < n && beyond; ++j) beyond = lenses[j].region.distance(p) >= margin[j];
+    if (!beyond) continue;
+    const size_t k = nearest_lens(lenses, p).first;
     out[k].displacement_beyond_footprint = std::max(
         out[k].displacement_beyond_footprint, (warp.screen.row(v) - warp.source.row(v)).norm());
   }

@@ -178,11 +178,20 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
     return grid_;
   }
   box.setEmpty();
+  if (focus) {
+    // Every footprint lies within its group's reach plus margin of the group's centre.
+    std::vector<double> log_zooms;
+    for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+    for (const FocusGroup& g : focus_groups(lenses, log_zooms)) {
+      const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.reach + g.margin);
+      box.extend(g.centre - half).extend(g.centre + half);
+    }
+  }
   for (const Lens& lens : lenses) {
+    if (focus) break;
     const Eigen::Vector2d centre = lens.region.bounds().center();
-    const double margin =
-        focus ? footprint_margin(lens) : (options_.extent_factor - 1) * lens.region.size();
-    const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() + margin;
+    const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() +
+                                 (options_.extent_factor - 1) * lens.region.size();
     box.extend(centre - half).extend(centre + half);
   }
   box = box.intersection(image);
@@ -205,12 +214,12 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   Eigen::AlignedBox2d box;
   const double cell = base_grid(lenses, box).cell;
+  fits = fitting_zooms(lenses, cell, width_, height_);
   std::vector<Lens> out = lenses;
-  for (Lens& lens : out) {
-    fits.push_back(fitting_zoom(lens, cell, width_, height_));
-    if (lens.zoom <= fits.back()) continue;
-    lens.footprint = footprint_ratio(lens);  // the footprint asked for stays
-    lens.zoom = std::max(1.0, fits.back());
+  for (size_t k = 0; k < out.size(); ++k) {
+    if (out[k].zoom <= fits[k]) continue;
+    out[k].footprint = footprint_ratio(out[k]);  // the footprint asked for stays
+    out[k].zoom = std::max(1.0, fits[k]);
   }
   return out;
 }
@@ -240,25 +249,24 @@ FlattenOptions GeometricLens::flatten_options(LensModel model) const {
 Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
                                        const std::vector<double>& heights, const PlanarMesh& mesh,
                                        const Eigen::AlignedBox2d& box, Clock::time_point start,
-                                       LensResult& r, FocusConstraints& focus) const {
+                                       LensResult& r, FocusField& focus) const {
   r.model = model_for(lenses);
   r.heights = heights;
   r.mesh = mesh;
   r.box = box;
   Lifted lifted;
   if (r.model == LensModel::kFocus) {
-    // The focus field read as a lift: z = size * log zoom, like the field model's.
-    FocusField field =
-        focus_field(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_);
+    // The focus field read as a lift (for --export-mesh): z = log zoom times the solved area's
+    // long side.
+    focus = focus_field(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_);
     lifted.V.resize(r.mesh.V.rows(), 3);
     lifted.V.leftCols<2>() = r.mesh.V;
-    lifted.V.col(2) = field.log_scale * box.sizes().maxCoeff();
-    lifted.level = std::move(field.level);
-    lifted.log_zoom = std::move(field.log_scale);
+    lifted.V.col(2) = focus.log_scale * box.sizes().maxCoeff();
+    lifted.level = focus.level;
+    lifted.log_zoom = focus.log_scale;
     lifted.inside.resize(size_t(r.mesh.V.rows()));
     for (size_t i = 0; i < lifted.inside.size(); ++i)
-      lifted.inside[i] = field.constraints.focus[i] >= 0;
-    focus = std::move(field.constraints);
+      lifted.inside[i] = focus.constraints.focus[i] >= 0;
   } else {
     lifted = lift(r.mesh.V, lenses, heights);
   }
@@ -317,17 +325,17 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
           : subdivide(
                 grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
                 options_.subdivision);
-  FocusConstraints focus;
+  FocusField focus;
   const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r, focus);
 
   auto t = Clock::now();
-  const Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                            flatten_options(r.model), lifted.log_zoom, focus);
+  Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options(r.model),
+                      lifted.log_zoom, focus.constraints);
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
   if (r.model == LensModel::kFocus) {
-    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, heights,
+    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, focus.groups,
                                  cell_size(box, options_.mesh), width_, height_);
   } else {
     r.flattening = flattener.solve(r.mesh.V);
@@ -348,7 +356,7 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   LensResult r;
   Eigen::AlignedBox2d box;
   const Grid grid = base_grid(lenses, box);
-  FocusConstraints focus;
+  FocusField focus;
   const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r, focus);
 
   auto t = Clock::now();
@@ -356,24 +364,24 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   // focus lens's also needs the same pinned vertices.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
                              (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9 &&
-                             focus.pinned == cache_.pinned;
+                             focus.constraints.pinned == cache_.pinned;
   if (same_topology && cache_.model == r.model) {
-    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus);
+    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus.constraints);
     const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
     cache_.flat.rowwise() += shift;
     if (cache_.predicted.rows() == cache_.flat.rows()) cache_.predicted.rowwise() += shift;
   } else {
     cache_.flattener =
         std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                                    flatten_options(r.model), lifted.log_zoom, focus);
-    cache_.flat =
-        r.model == LensModel::kFocus
-            ? focus_start(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_)
-            : r.mesh.V;
+                                    flatten_options(r.model), lifted.log_zoom, focus.constraints);
+    cache_.flat = r.model == LensModel::kFocus
+                      ? focus_start(r.mesh.V, lenses, focus.groups, cell_size(box, options_.mesh),
+                                    width_, height_)
+                      : r.mesh.V;
     cache_.predicted.resize(0, 2);
   }
   cache_.box = r.box;
-  cache_.pinned = std::move(focus.pinned);
+  cache_.pinned = std::move(focus.constraints.pinned);
   cache_.model = r.model;
   r.timings.factorize = ms_since(t);
 

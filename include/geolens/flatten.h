@@ -86,7 +86,7 @@ struct FocusConstraints {
   std::vector<int> focus;      ///< #V index of the lens whose focus holds the vertex, or -1
   std::vector<char> pinned;    ///< #V 1: the vertex keeps its position
   Eigen::VectorXd anisotropy;  ///< #V bound K >= 1 on s1 / s2 outside the foci
-  double focus_weight = 1000;  ///< > 0
+  double focus_weight = 10;    ///< > 0
   bool empty() const { return focus.empty(); }
 };
 
@@ -143,6 +143,11 @@ class Flattener {
   /// Whether X (#V x 2) can start a flip-safe solve as it is: no triangle folded or degenerate,
   /// every fixed coordinate at its value.
   bool admissible(const Eigen::MatrixX2d& X) const;
+
+  /// Focus constraints: raises each bounded triangle's anisotropy bound to its shape distortion
+  /// s1 / s2 in X (#V x 2, admissible), so that X is feasible where the radial bounds are not
+  /// (where lenses' rings overlap): the solve then only has to bring the foci to their shapes.
+  void admit_anisotropy(const Eigen::MatrixX2d& X);
 
   /// E(X) with the metric targets fitted to X (the local step), see above.
   double energy(const Eigen::MatrixX2d& X) const;

@@ -26,48 +26,67 @@ double footprint_margin(const Lens& lens);
 /// ln ratio, and its distortion is 1 / (dv/du) - 1). Infinite when ratio <= zoom.
 double radial_distortion_bound(double zoom, double ratio);
 
-/// The largest zoom at which `lens` fits where it is on a width x height image (pixels), on a mesh
-/// of cell side `cell`: the footprint's edge along every ray from the lens's centre (the image
-/// border where nearer) must lie far enough beyond the focus that the radial bound's distortion
-/// stays at most 4, zoom <= (edge / inner)^0.8. A region over an image side is magnified about a
-/// point on that side (so the side stays where it is), which shifts the magnified focus inward.
-double fitting_zoom(const Lens& lens, double cell, double width, double height);
+/// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
+/// magnified together, as one focus: the union of their regions, at the largest of their zooms,
+/// about the centre of their peaks; its reach is the farthest point of any of the regions from
+/// there, its footprint the largest ratio of theirs. A lens alone is a group of one.
+struct FocusGroup {
+  std::vector<size_t> lenses;  ///< the members, indices into the lenses
+  Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
+  double reach = 0;            ///< pixels
+  double margin = 0;           ///< how far the footprint reaches beyond the regions, pixels
+  double log_zoom = 0;         ///< the focus's
+};
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
+                                     const std::vector<double>& log_zooms);
+
+/// Per lens, the largest zoom at which its group fits where it is on a width x height image
+/// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the
+/// group's centre (the image border where nearer) must lie far enough beyond the focus that
+/// the radial bound's distortion stays at most 4, zoom <= (edge / inner)^0.8. A region over an
+/// image side is magnified about a point on that side (so the side stays where it is), which
+/// shifts the magnified focus inward.
+std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double width,
+                                  double height);
 
 /// What the focus lens asks of the flattening at the vertices `V` (#V x 2, pixels) of a mesh of
 /// cell side `cell` (pixels) on a width x height image, lens i with log zoom `log_zooms[i]`
 /// (>= 0):
 struct FocusField {
+  std::vector<FocusGroup> groups;  ///< focus_groups of the lenses
   /// Focus: every vertex within sqrt(2) cells of a region (so every triangle that meets the
-  /// region is whole in its focus), assigned to the nearest region. Pinned: every vertex within
-  /// sqrt(2) cells of leaving every footprint (so every point beyond the footprints lies in a
-  /// triangle that does not move). Anisotropy: the radial bound along the vertex's ray from the
-  /// centre of the lens whose footprint it is deepest in, times `slack`.
+  /// region is whole in its focus), with the index of the nearest group. Pinned: every vertex
+  /// within sqrt(2) cells of leaving every footprint (so every point beyond the footprints lies
+  /// in a triangle that does not move). Anisotropy: the radial bound along the vertex's ray
+  /// from the centre of the group whose footprint it is deepest in, times `slack`.
   FocusConstraints constraints;
-  Eigen::VectorXd log_scale;  ///< #V the lens's log zoom in its focus, 0 elsewhere
+  Eigen::VectorXd log_scale;  ///< #V the group's log zoom in its focus, 0 elsewhere
   Eigen::VectorXd level;      ///< #V 1 where the vertex may move, 0 where pinned
 };
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double width,
                        double height, double slack = 1.1);
 
-/// A fold-free first flattening for focus_field's constraints: each lens's power-law ring,
-/// generalized to any region by the distance d to it. About the lens's centre c (its peak, or
-/// a point on the image side the region crosses), a point p goes to c + g (p - c) with
-/// ln g = log_zoom * ln(R / s) / ln(R / r), s = r + d, r the region's reach from c (plus the
-/// focus's sqrt(2) cells), R the footprint's edge along the ray (or the image border if
+/// A fold-free first flattening for focus_field's constraints: each group's power-law ring,
+/// generalized to any region by the distance d to it. About the group's centre c (or a point on
+/// the image side its regions cross), a point p goes to c + g (p - c) with
+/// ln g = log_zoom * ln(R / s) / ln(R / r), s = r + d, r the reach from c (plus the focus's
+/// sqrt(2) cells), R the footprint's edge along the ray (or short of the image border if
 /// nearer). For a circle this is the bound-reaching radial lens; for any region
 /// |p - c| <= r + d makes g |p - c| grow along every ray while R > zoom r, so no triangle folds,
-/// and the image border maps onto itself. The lenses are applied one after the other (each
-/// to the last one's result), which keeps every map fold-free. Returns #V x 2, pixels.
+/// and the image border maps onto itself. The groups are applied one after the other (each to
+/// the last one's result), which keeps every map fold-free. Returns #V x 2, pixels.
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
-                             const std::vector<double>& log_zooms, double cell, double width,
+                             const std::vector<FocusGroup>& groups, double cell, double width,
                              double height);
 
 /// Flattens focus lenses with `flattener` (built on focus_field's constraints and log scales,
-/// Standard::kScaled, kCotan weights) from focus_start, or from the identity `V` (#V x 2, pixels)
-/// if the flattener does not admit that start (lenses that do not fit, see fitting_zoom).
-FlattenResult flatten_focus(const Flattener& flattener, const Eigen::MatrixX2d& V,
-                            const std::vector<Lens>& lenses, const std::vector<double>& log_zooms,
+/// Standard::kScaled, kCotan weights) from focus_start, each triangle's anisotropy bound raised
+/// to the start's distortion where that is higher (Flattener::admit_anisotropy: where the rings
+/// of several groups overlap), or from the identity `V` (#V x 2, pixels) if the flattener does
+/// not admit that start (groups that do not fit, see fitting_zooms).
+FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
                             double cell, double width, double height);
 
 }  // namespace geolens

@@ -19,9 +19,9 @@ struct FocusMeasure {
   /// to its region) whose magnification departs from 1 by more than 5 % or whose shape
   /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
   double footprint_radius = 0;
-  /// The largest |screen - source| (pixels) of a mesh vertex at least footprint_margin(lens)
-  /// from the region and nearest this lens: 0 when everything beyond the footprint is left in
-  /// place.
+  /// The largest |screen - source| (pixels) of a mesh vertex nearest this lens and beyond every
+  /// footprint (farther from each region than its focus group's margin, focus_lens.h): 0 when
+  /// everything beyond the footprints is left in place.
   double displacement_beyond_footprint = 0;
 };
 

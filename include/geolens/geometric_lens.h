@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geolens/flatten.h"
+#include "geolens/focus_lens.h"
 #include "geolens/grid.h"
 #include "geolens/lift.h"
 #include "geolens/subdivide.h"
@@ -130,7 +131,7 @@ class GeometricLens {
   Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
                           const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
                           std::chrono::steady_clock::time_point start, LensResult& r,
-                          FocusConstraints& focus) const;
+                          FocusField& focus) const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
   LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
