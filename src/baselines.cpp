@@ -29,6 +29,8 @@ std::string to_string(ClassicLens lens) {
       return "flattop_linear";
     case ClassicLens::kFlattopCosine:
       return "flattop_cosine";
+    case ClassicLens::kPowerRing:
+      return "power_ring";
   }
   return "zoom_in";
 }
@@ -65,6 +67,12 @@ double classic_source_distance(ClassicLens lens, double u, double zoom) {
       const double gain =
           u <= a ? zoom : 1 + d * 0.5 * (1 + std::cos(std::numbers::pi * (u - a) / (1 - a)));
       return u / gain;
+    }
+    case ClassicLens::kPowerRing: {
+      // In log coordinates the ring is linear: ln u = k ln t between (ln(a / z), ln a) and (0, 0).
+      if (u <= a) return u / zoom;
+      const double k = std::log(1 / a) / std::log(zoom / a);
+      return std::pow(u, 1 / k);
     }
   }
   return u;

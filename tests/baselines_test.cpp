@@ -11,6 +11,7 @@
 
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
+#include "geolens/focus_lens.h"
 
 namespace geolens {
 namespace {
@@ -169,8 +170,8 @@ TEST(Baselines, ZoomInIsUndistortedAndHidesItsRing) {
 TEST(Baselines, FlatTopsAndBifocalHaveAUniformUndistortedFocus) {
   // Two lenses of different zooms: each focus is uniform on its own.
   const std::vector<CircleLens> lenses = {{{200, 256}, 150, 2.5}, {{500, 256}, 120, 4}};
-  for (ClassicLens kind :
-       {ClassicLens::kBifocal, ClassicLens::kFlattopLinear, ClassicLens::kFlattopCosine}) {
+  for (ClassicLens kind : {ClassicLens::kBifocal, ClassicLens::kFlattopLinear,
+                           ClassicLens::kFlattopCosine, ClassicLens::kPowerRing}) {
     SCOPED_TRACE(to_string(kind));
     const WarpMesh warp = classic_warp(kind, lenses, 700, 512, 250);
     const TriangleDistortion m = measure_triangles(warp);
@@ -193,6 +194,27 @@ TEST(Baselines, FlatTopLinearHasItsAnalyticRimDistortion) {
   const WarpMesh warp = classic_warp(ClassicLens::kFlattopLinear, {lens}, 512, 512, 200);
   const RegionStatistics r = measure_regions(warp, measure_triangles(warp), {lens}, 512, 512);
   EXPECT_NEAR(r.transition.conformal_max, (zoom - 1) / (1 - a), 0.03 * (zoom - 1) / (1 - a));
+}
+
+// The power ring reaches the radial bound: its shape distortion is 1 / k - 1 everywhere in the
+// ring, the least any radial lens with a uniform focus of source radius a r / z and the identity
+// beyond r can have (R / r_f = z / a), on a 1 px mesh (2 px cells add 2 - 3 % at the focus rim).
+TEST(Baselines, PowerRingReachesTheRadialBound) {
+  for (const double zoom : {2.0, 3.0}) {
+    SCOPED_TRACE(zoom);
+    const CircleLens lens{{300, 300}, 250, zoom};
+    const WarpMesh warp = classic_warp(ClassicLens::kPowerRing, {lens}, 600, 600, 600);
+    const RegionStatistics r = measure_regions(warp, measure_triangles(warp), {lens}, 600, 600);
+    const double bound = radial_distortion_bound(zoom, zoom / kFocusFraction);
+    EXPECT_NEAR(r.transition.conformal_max / bound, 1.0, 0.02);
+    EXPECT_LT(r.focus.conformal_max, 1e-9);
+    // The flat tops of the same proportions distort more.
+    for (ClassicLens other : {ClassicLens::kFlattopLinear, ClassicLens::kFlattopCosine}) {
+      const WarpMesh w = classic_warp(other, {lens}, 600, 600, 300);
+      EXPECT_GT(measure_regions(w, measure_triangles(w), {lens}, 600, 600).transition.conformal_max,
+                1.5 * bound);
+    }
+  }
 }
 
 TEST(Baselines, MatchingReachesTheTargetZoomWithTheSameMeasure) {
@@ -228,6 +250,7 @@ TEST(Baselines, RejectsBadLenses) {
                InvalidInput);
   EXPECT_THROW(ringed_grid(400, 300, 50, {{{100, 100}, -1}}), InvalidInput);
   EXPECT_EQ(to_string(ClassicLens::kFlattopCosine), "flattop_cosine");
+  EXPECT_EQ(to_string(ClassicLens::kPowerRing), "power_ring");
 }
 
 }  // namespace

@@ -45,14 +45,22 @@ enum class ClassicLens {
   /// Flat-top lens with raised-cosine drop-off: M = 1 + (z - 1) (1 + cos(pi (u - a) / (1 - a))) / 2
   /// between a r and r: C1 at both ends of the drop-off.
   kFlattopCosine,
+  /// The best radial lens for its proportions: uniform zoom z on the screen disk a r, then the
+  /// power-law ring rho = R (s / R)^k (source s, screen rho, R = r), k = 1 - ln z / ln(z / a),
+  /// whose shape distortion 1 / k - 1 is the same everywhere in the ring and is the least any
+  /// radial lens with that focus and outer radius can have (radial_distortion_bound in
+  /// focus_lens.h). T(u) = u / z for u <= a, u^(1 / k) from a to 1.
+  kPowerRing,
 };
 
 /// Every classic lens, in the order the comparison reports them.
-constexpr std::array<ClassicLens, 6> kClassicLenses = {
-    ClassicLens::kZoomIn,  ClassicLens::kFisheye,       ClassicLens::kFisheyeSmooth,
-    ClassicLens::kBifocal, ClassicLens::kFlattopLinear, ClassicLens::kFlattopCosine};
+constexpr std::array<ClassicLens, 7> kClassicLenses = {
+    ClassicLens::kZoomIn,   ClassicLens::kFisheye,       ClassicLens::kFisheyeSmooth,
+    ClassicLens::kBifocal,  ClassicLens::kFlattopLinear, ClassicLens::kFlattopCosine,
+    ClassicLens::kPowerRing};
 
-/// "zoom_in" | "fisheye" | "fisheye_smooth" | "bifocal" | "flattop_linear" | "flattop_cosine"
+/// "zoom_in" | "fisheye" | "fisheye_smooth" | "bifocal" | "flattop_linear" | "flattop_cosine" |
+/// "power_ring"
 std::string to_string(ClassicLens lens);
 
 /// T(u): the normalized source distance shown at normalized screen distance u >= 0 by a lens of
