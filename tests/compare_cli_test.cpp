@@ -20,8 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kMethods[] = {"geometric", "zoom_in",        "fisheye",       "fisheye_smooth",
-                          "bifocal",   "flattop_linear", "flattop_cosine"};
+const char* kMethods[] = {"geometric", "zoom_in",        "fisheye",        "fisheye_smooth",
+                          "bifocal",   "flattop_linear", "flattop_cosine", "power_ring"};
 
 using testing::CliRun;
 
@@ -91,7 +91,7 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
   const nlohmann::json j = report(out);
   ASSERT_EQ(j.size(), 1u);
   const nlohmann::json& methods = j.at("methods");
-  ASSERT_EQ(methods.size(), 7u);
+  ASSERT_EQ(methods.size(), std::size(kMethods));
   const double geometric_zoom = methods[0].at("zoom_center").get<double>();
   EXPECT_NEAR(geometric_zoom, 2, 0.1);
   for (size_t i = 0; i < 7; ++i) {
@@ -153,7 +153,7 @@ TEST_F(CompareCli, LocalExtentIsMeasuredLikeTheRest) {
                        " --extent local --baseline-mesh 60 --tile 64");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json methods = report(out).at("methods");
-  ASSERT_EQ(methods.size(), 7u);
+  ASSERT_EQ(methods.size(), std::size(kMethods));
   for (const nlohmann::json& m : methods) {
     EXPECT_NEAR(m.at("zoom_center").get<double>() / methods[0].at("zoom_center").get<double>(), 1,
                 0.05);
