@@ -68,11 +68,13 @@ class CompareCli : public testing::ScratchFolderTest {
   }
 };
 
-// The setting: 1024 x 1024, r = 150, zoom 2.
+// The setting: 1024 x 1024, r = 150, zoom 2, the paper's lift (the classic lenses
+// then have the region's radius).
 TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
   write_input("in.png", 1024);
   const std::string out = path("out");
-  const CliRun r = run("compare " + path("in.png") + " --lens circle:512,512,150:2 -o " + out);
+  const CliRun r =
+      run("compare " + path("in.png") + " --lens circle:512,512,150:2 --model lift -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* name : kMethods) {
     for (const std::string suffix : {".png", "_heatmap.png"}) {
@@ -94,11 +96,13 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
   ASSERT_EQ(methods.size(), std::size(kMethods));
   const double geometric_zoom = methods[0].at("zoom_center").get<double>();
   EXPECT_NEAR(geometric_zoom, 2, 0.1);
-  for (size_t i = 0; i < 7; ++i) {
+  for (size_t i = 0; i < std::size(kMethods); ++i) {
     const nlohmann::json& m = methods[i];
     SCOPED_TRACE(kMethods[i]);
     EXPECT_EQ(m.at("name").get<std::string>(), kMethods[i]);
-    EXPECT_EQ(m.size(), 6u);
+    EXPECT_EQ(m.size(), 7u);
+    ASSERT_EQ(m.at("lenses").size(), 1u);
+    EXPECT_GE(m.at("lenses")[0].at("uniformity").get<double>(), 1);
     EXPECT_NEAR(m.at("zoom_center").get<double>() / geometric_zoom, 1, 0.05);
     EXPECT_GE(m.at("focus_uniformity").get<double>(), 1);
     const nlohmann::json& d = m.at("distortion");
@@ -126,6 +130,34 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
   }
   for (const auto& entry : fs::directory_iterator(out))
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+// With the focus model (the default) the classic lenses get the focus lens's footprint as their
+// radius, so each shows the same region at full zoom: the geometric lens's focus is uniform and
+// undistorted, nothing beyond its footprint moves, and its largest shape distortion is below
+// every classic lens with a uniform focus but the bound-reaching power ring.
+TEST_F(CompareCli, FocusLensAgainstClassicLensesOfTheSameFootprint) {
+  write_input("in.png", 1024);
+  const std::string out = path("out");
+  const CliRun r =
+      run("compare " + path("in.png") + " --lens circle:512,512,100:2 --mesh 200 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json methods = report(out).at("methods");
+  ASSERT_EQ(methods.size(), std::size(kMethods));
+  const nlohmann::json& geometric = methods[0].at("lenses")[0];
+  EXPECT_NEAR(geometric.at("zoom").get<double>(), 2, 0.02);
+  EXPECT_LT(geometric.at("uniformity").get<double>(), 1.01);
+  EXPECT_LT(geometric.at("shape_max").get<double>(), 0.01);
+  EXPECT_EQ(geometric.at("displacement_beyond_footprint").get<double>(), 0);
+  auto worst = [](const nlohmann::json& m) {
+    return m.at("distortion").at("overall").at("max").get<double>();
+  };
+  for (size_t i : {4, 5, 6}) {  // bifocal, flat-top linear, flat-top cosine
+    SCOPED_TRACE(kMethods[i]);
+    EXPECT_NEAR(methods[i].at("lenses")[0].at("uniformity").get<double>(), 1, 1e-9);
+    EXPECT_LT(worst(methods[0]), worst(methods[i]));
+  }
+  EXPECT_GT(worst(methods[0]), worst(methods[7]));  // no lens beats the bound
 }
 
 TEST_F(CompareCli, ZoomOneIsTheIdentityForEveryMethod) {

@@ -17,6 +17,8 @@
 #include "geolens/distortion_regions.h"
 #include "geolens/errors.h"
 #include "geolens/file_io.h"
+#include "geolens/focus_lens.h"
+#include "geolens/focus_measure.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/heatmap.h"
 #include "geolens/image.h"
@@ -34,7 +36,27 @@ struct Method {
   double zoom_center = 0;  // magnification_at the first lens's centre
   TriangleDistortion measures;
   RegionStatistics regions;
+  std::vector<FocusMeasure> foci;  // per lens, over the region the user gave
 };
+
+// The radius of the classic lenses matched to `lens`: its footprint for a focus lens (the flat
+// tops then show the region at full zoom on the inner half of their disk), else its region.
+double classic_radius(const Lens& lens, const LensOptions& options) {
+  return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.size()
+                                            : lens.region.size();
+}
+
+nlohmann::json foci_json(const std::vector<FocusMeasure>& foci) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const FocusMeasure& f : foci)
+    list.push_back({{"zoom", f.zoom},
+                    {"uniformity", f.uniformity},
+                    {"shape_mean", f.shape_mean},
+                    {"shape_max", f.shape_max},
+                    {"footprint_radius", f.footprint_radius},
+                    {"displacement_beyond_footprint", f.displacement_beyond_footprint}});
+  return list;
+}
 
 std::string fixed(double value, int digits) {
   char text[64];
@@ -209,6 +231,21 @@ std::string report_markdown(const CompareArgs& args, const std::vector<CircleLen
     md << "| " << m.name << " | " << area_cell(m.regions.focus) << " | "
        << area_cell(m.regions.transition) << " | " << area_cell(m.regions.context) << " |\n";
   }
+  md << "\nPer lens, over the region given (focus_measure.h): zoom = mean magnification, "
+        "uniformity = max / min, shape distortion mean / max, footprint = radius of the disk of "
+        "the same area as the source disturbed by more than 5 %, moved = the largest displacement "
+        "beyond the footprint (px):\n\n";
+  md << "| method | lens | zoom | uniformity | shape | footprint | moved |\n"
+        "|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const Method& m : methods) {
+    for (size_t k = 0; k < m.foci.size(); ++k) {
+      const FocusMeasure& f = m.foci[k];
+      md << "| " << m.name << " | " << k + 1 << " | " << fixed(f.zoom, 3) << " | "
+         << fixed(f.uniformity, 3) << " | " << fixed(f.shape_mean, 3) << " / "
+         << fixed(f.shape_max, 3) << " | " << fixed(f.footprint_radius, 0) << " | "
+         << fixed(f.displacement_beyond_footprint, 1) << " |\n";
+    }
+  }
   md << "\nGeometric lens, the paper's Eq. 7 energy of its flattening (cot weights, measured from "
         "rigid): "
      << fixed(eq7_total, 1) << " px^2, " << fixed(eq7_total / image_area, 5)
@@ -271,7 +308,7 @@ int run_compare(const CompareArgs& a) {
                 "; compare supports circle lenses only");
     for (size_t j = 0; j < k; ++j) {
       require((lenses[k].region.peak() - lenses[j].region.peak()).norm() >=
-                  lenses[k].region.size() + lenses[j].region.size(),
+                  classic_radius(lenses[k], options) + classic_radius(lenses[j], options),
               "--lens",
               "lenses " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
                   " overlap; compare needs disjoint circles");
@@ -296,8 +333,8 @@ int run_compare(const CompareArgs& a) {
   std::vector<CircleLens> targets;
   std::vector<double> zoom_requested, measure_radius;
   for (size_t k = 0; k < lenses.size(); ++k) {
-    targets.push_back(
-        {lenses[k].region.peak(), lenses[k].region.size(), std::max(1.0, solved.zoom_measured[k])});
+    targets.push_back({lenses[k].region.peak(), classic_radius(lenses[k], options),
+                       std::max(1.0, solved.zoom_measured[k])});
     zoom_requested.push_back(lenses[k].zoom);
     // The radius GeometricLens measures its zoom over: a grid cell of the solved area, at least
     // 0.05 r (docs/design.md, "Zoom, not height").
@@ -315,6 +352,7 @@ int run_compare(const CompareArgs& a) {
   for (Method& m : methods) {
     m.measures = measure_triangles(m.warp);
     m.regions = measure_regions(m.warp, m.measures, targets, source.width, source.height);
+    m.foci = measure_foci(m.warp, m.measures, lenses);
     if (a.heat_max == 0) heat_max = std::max(heat_max, m.regions.overall.conformal_max);
   }
   if (heat_max == 0) heat_max = 1;  // every method is the identity
@@ -335,7 +373,8 @@ int run_compare(const CompareArgs& a) {
            {"context", zone_json(r.context)},
            {"overall", zone_json(r.overall)}}},
          {"occluded_percent", r.occluded_percent},
-         {"flipped", r.overall.flipped}});
+         {"flipped", r.overall.flipped},
+         {"lenses", foci_json(m.foci)}});
   }
   const std::string markdown = report_markdown(a, targets, zoom_requested, methods, eq7_total,
                                                double(source.width) * source.height);
