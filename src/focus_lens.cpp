@@ -113,6 +113,19 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
           std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
     g.margin = (ratio - 1) * g.reach;
   }
+  // Footprints stop where they would meet a neighbour's: where the disks of radius reach +
+  // margin of two groups overlap, both margins shrink by the same factor until the disks touch
+  // (their foci do not overlap, so there is room), and no lens pushes another.
+  for (size_t i = 0; i < groups.size(); ++i) {
+    for (size_t j = i + 1; j < groups.size(); ++j) {
+      FocusGroup &a = groups[i], &b = groups[j];
+      const double room = (a.centre - b.centre).norm() - a.reach - b.reach;
+      if (a.margin + b.margin <= room) continue;
+      const double scale = std::max(room, 0.0) / (a.margin + b.margin);
+      a.margin *= scale;
+      b.margin *= scale;
+    }
+  }
   return groups;
 }
 
@@ -138,7 +151,8 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
       const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
       if (ray_exits(ring.centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
-      ratio = std::min(ratio, ring.edge(u, width, height) / ring.inner);
+      // The ring needs a few cells of the mesh to bend without folding a triangle.
+      ratio = std::min(ratio, (ring.edge(u, width, height) - 2 * cell) / ring.inner);
     }
     for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
   }
@@ -210,29 +224,63 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   return out;
 }
 
+namespace {
+
+// Moves the rows of X (pixels) by `group`'s power-law ring (see focus_start) at `log_zoom`.
+void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const FocusGroup& group,
+                double log_zoom, double cell, double width, double height) {
+  if (log_zoom <= 0) return;
+  const double near = near_distance(cell);
+  const Ring ring(group, lenses, cell, width, height);
+  parallel_for(size_t(X.rows()), [&](size_t begin, size_t end) {
+    for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+      const Eigen::Vector2d q = X.row(i).transpose();
+      const Eigen::Vector2d u = q - ring.centre;
+      if (u.norm() == 0) continue;
+      const double edge = ring.edge(u.normalized(), width, height);
+      const double s = ring.inner + std::max(group_distance(group, lenses, q) - near, 0.0);
+      // On or beyond the footprint's edge (an image border point lies on its ray's edge).
+      if (s >= edge * (1 - 1e-12)) continue;
+      const double g = std::exp(log_zoom * std::log(edge / s) / std::log(edge / ring.inner));
+      X.row(i) = (ring.centre + g * u).transpose();
+    }
+  });
+}
+
+bool folds(const Eigen::MatrixX2d& X, const Eigen::MatrixX3i& F) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector2d a = X.row(F(f, 1)) - X.row(F(f, 0)), b = X.row(F(f, 2)) - X.row(F(f, 0));
+    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double width,
                              double height) {
-  const double near = near_distance(cell);
   Eigen::MatrixX2d X = V;
-  for (const FocusGroup& group : groups) {
-    if (group.log_zoom <= 0) continue;
-    const Ring ring(group, lenses, cell, width, height);
-    parallel_for(size_t(V.rows()), [&](size_t begin, size_t end) {
-      for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
-        const Eigen::Vector2d q = X.row(i).transpose();
-        const Eigen::Vector2d u = q - ring.centre;
-        if (u.norm() == 0) continue;
-        const double edge = ring.edge(u.normalized(), width, height);
-        const double s = ring.inner + std::max(group_distance(group, lenses, q) - near, 0.0);
-        // On or beyond the footprint's edge (an image border point lies on its ray's edge).
-        if (s >= edge * (1 - 1e-12)) continue;
-        const double g = std::exp(ring.log_zoom * std::log(edge / s) / std::log(edge / ring.inner));
-        X.row(i) = (ring.centre + g * u).transpose();
-      }
-    });
-  }
+  for (const FocusGroup& group : groups)
+    apply_ring(X, lenses, group, group.log_zoom, cell, width, height);
   return X;
+}
+
+std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
+                                    double cell, double width, double height) {
+  std::vector<double> log_zooms, zooms(lenses.size(), 1.0);
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
+    // The footprints are disjoint, so each group is tried on its own.
+    for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
+      Eigen::MatrixX2d X = mesh.V;
+      apply_ring(X, lenses, group, fraction * group.log_zoom, cell, width, height);
+      if (folds(X, mesh.F)) continue;
+      for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
+      break;
+    }
+  }
+  return zooms;
 }
 
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,

@@ -26,6 +26,19 @@ std::pair<size_t, double> nearest_lens(const std::vector<Lens>& lenses, const Ei
   return {best, distance};
 }
 
+// The triangle whose source contains p, or -1.
+Eigen::Index containing_triangle(const WarpMesh& warp, const Eigen::Vector2d& p) {
+  for (Eigen::Index f = 0; f < warp.F.rows(); ++f) {
+    const Eigen::Vector2d a = warp.source.row(warp.F(f, 0)), b = warp.source.row(warp.F(f, 1)),
+                          c = warp.source.row(warp.F(f, 2));
+    auto side = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+      return (v - u).x() * (p - u).y() - (v - u).y() * (p - u).x() >= 0;
+    };
+    if (side(a, b) && side(b, c) && side(c, a)) return f;
+  }
+  return -1;
+}
+
 }  // namespace
 
 std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDistortion& measures,
@@ -69,8 +82,15 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
         out[k].displacement_beyond_footprint, (warp.screen.row(v) - warp.source.row(v)).norm());
   }
   for (size_t k = 0; k < n; ++k) {
-    require(focus_area[k] > 0, "measure_foci",
-            "lens " + std::to_string(k + 1) + "'s region holds no triangle centroid");
+    if (focus_area[k] == 0) {
+      // A region smaller than the mesh's triangles: the one under its peak.
+      const Eigen::Index f = containing_triangle(warp, lenses[k].region.peak());
+      require(f >= 0, "measure_foci",
+              "lens " + std::to_string(k + 1) + "'s peak lies in no triangle of the warp");
+      focus_area[k] = 1;
+      out[k].zoom = lowest[k] = highest[k] = measures.magnification(f);
+      out[k].shape_mean = out[k].shape_max = measures.conformal(f);
+    }
     out[k].zoom /= focus_area[k];
     out[k].shape_mean /= focus_area[k];
     out[k].uniformity =

@@ -216,11 +216,17 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
   const double cell = base_grid(lenses, box).cell;
   fits = fitting_zooms(lenses, cell, width_, height_);
   std::vector<Lens> out = lenses;
-  for (size_t k = 0; k < out.size(); ++k) {
-    if (out[k].zoom <= fits[k]) continue;
-    out[k].footprint = footprint_ratio(out[k]);  // the footprint asked for stays
-    out[k].zoom = std::max(1.0, fits[k]);
-  }
+  auto lower = [&](const std::vector<double>& caps) {
+    for (size_t k = 0; k < out.size(); ++k) {
+      fits[k] = std::min(fits[k], caps[k]);
+      if (out[k].zoom <= fits[k]) continue;
+      out[k].footprint = footprint_ratio(out[k]);  // the footprint asked for stays
+      out[k].zoom = std::max(1.0, fits[k]);
+    }
+  };
+  lower(fits);
+  // Then what the mesh of the clamped lenses can hold without folding.
+  lower(unfolding_zooms(base_grid(out, box), out, cell_size(box, options_.mesh), width_, height_));
   return out;
 }
 

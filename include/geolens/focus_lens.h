@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geolens/flatten.h"
+#include "geolens/grid.h"
 #include "geolens/lift.h"
 
 namespace geolens {
@@ -29,7 +30,10 @@ double radial_distortion_bound(double zoom, double ratio);
 /// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
 /// magnified together, as one focus: the union of their regions, at the largest of their zooms,
 /// about the centre of their peaks; its reach is the farthest point of any of the regions from
-/// there, its footprint the largest ratio of theirs. A lens alone is a group of one.
+/// there, its footprint the largest ratio of theirs. A lens alone is a group of one. Footprints
+/// do not overlap: where the disks of radius reach + margin of two groups would, both margins
+/// shrink by the same factor until they touch, so no lens moves another (and a lens with a
+/// near neighbour fits a lower zoom).
 struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
@@ -42,8 +46,9 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
 
 /// Per lens, the largest zoom at which its group fits where it is on a width x height image
 /// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the
-/// group's centre (the image border where nearer) must lie far enough beyond the focus that
-/// the radial bound's distortion stays at most 4, zoom <= (edge / inner)^0.8. A region over an
+/// group's centre (the image border where nearer), less two cells for the mesh to bend in, must
+/// lie far enough beyond the focus that the radial bound's distortion stays at most 4,
+/// zoom <= ((edge - 2 cell) / inner)^0.8. A region over an
 /// image side is magnified about a point on that side (so the side stays where it is), which
 /// shifts the magnified focus inward.
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double width,
@@ -79,6 +84,13 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double width,
                              double height);
+
+/// Per lens, the largest zoom of its group (its own, or exp of 0.8, 0.6, 0.4 or 0.2 of its log)
+/// at which the group's ring in focus_start folds no triangle of `mesh` (cell side `cell`,
+/// pixels, on a width x height image), 1 if none: where fitting_zooms's estimate is too much for
+/// the mesh (a ring a few cells wide).
+std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
+                                    double cell, double width, double height);
 
 /// Flattens focus lenses with `flattener` (built on focus_field's constraints and log scales,
 /// Standard::kScaled, kCotan weights) from focus_start, each triangle's anisotropy bound raised

@@ -26,8 +26,8 @@ struct FocusMeasure {
 };
 
 /// Measures every lens on `warp` (its source in source pixels, its screen framed at the source's
-/// size), with `measures` = measure_triangles(warp). Throws InvalidInput if a region holds no
-/// triangle centroid.
+/// size), with `measures` = measure_triangles(warp). A region that holds no triangle centroid is
+/// measured on the triangle under its peak. Throws InvalidInput if that lies in no triangle.
 std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDistortion& measures,
                                        const std::vector<Lens>& lenses);
 
