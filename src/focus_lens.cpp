@@ -27,36 +27,135 @@ Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, do
   return Eigen::Vector2d(std::max(x, 0.0), std::max(y, 0.0));
 }
 
-// One focus group's ring: the power law about `centre` between the focus (radius `inner` from
-// it) and the footprint's edge, which along each ray is `outer` from it or the image border if
-// nearer.
-struct Ring {
-  Eigen::Vector2d centre;
-  double inner, outer, log_zoom;
+// The distance from p to the nearest region of `group`, pixels.
+double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
+                      const Eigen::Vector2d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t k : group.lenses) d = std::min(d, lenses[k].region.distance(p));
+  return d;
+}
 
-  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell, double width,
-       double height)
-      : log_zoom(group.log_zoom) {
-    const double near = near_distance(cell);
+// One focus group's ring about `centre` (the group's, or a point on the image side its regions
+// cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
+// smooth envelope of the farthest point within `near` of a region) and the footprint's edge
+// lies at edge(u): the focus scaled by the footprint ratio, inside the group's disk, and short
+// of the image border where that is nearer.
+struct Ring {
+  static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
+  Eigen::Vector2d centre, disk_centre;
+  double log_zoom, disk_radius, ratio, near, cell, width, height;
+  std::vector<double> inner_;  // per bin, or one value for a circle about its centre
+
+  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double width_,
+       double height_)
+      : disk_centre(group.centre),
+        log_zoom(group.log_zoom),
+        disk_radius(group.reach + group.margin),
+        ratio(1 + group.margin / group.reach),
+        near(near_distance(cell_)),
+        cell(cell_),
+        width(width_),
+        height(height_) {
     // A region over an image side is magnified about a point on that side, so the side stays.
     Eigen::AlignedBox2d b;
     for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
-    centre = group.centre;
-    if (b.min().x() <= 0) centre.x() = 0;
-    if (b.max().x() >= width) centre.x() = width;
-    if (b.min().y() <= 0) centre.y() = 0;
-    if (b.max().y() >= height) centre.y() = height;
-    inner = group.reach + (centre - group.centre).norm() + near;
-    outer = group.reach + group.margin - near;
+    Eigen::Vector2d c = group.centre;
+    if (b.min().x() <= 0) c.x() = 0;
+    if (b.max().x() >= width) c.x() = width;
+    if (b.min().y() <= 0) c.y() = 0;
+    if (b.max().y() >= height) c.y() = height;
+    place_at(c, group, lenses);
   }
-  // The footprint's edge along the ray with unit direction u, from the centre: `outer`, or short
-  // of the image border where that is nearer. A smooth minimum (the 4-norm of the reciprocals)
-  // of the three, so the edge does not turn sharply at an image corner, where the ring would
-  // shear the mesh's triangles until they fold.
-  double edge(const Eigen::Vector2d& u, double width, double height) const {
+
+  // The smallest ratio, over the rays into the image, of the footprint's edge (less two cells,
+  // for the mesh to bend in) to the focus's extent.
+  double min_ratio() const {
+    double r = std::numeric_limits<double>::infinity();
+    constexpr int kRays = 720;
+    for (int k = 0; k < kRays; ++k) {
+      const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      if (ray_exits(centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
+      r = std::min(r, (edge(u) - 2 * cell) / inner(u));
+    }
+    return r;
+  }
+
+  // Puts the centre at c and finds the focus's extent along every ray from it.
+  void place_at(const Eigen::Vector2d& c, const FocusGroup& group,
+                const std::vector<Lens>& lenses) {
+    centre = c;
+    const double reach = group.reach + (centre - group.centre).norm() + near;
+    if (group.lenses.size() == 1 && centre == group.centre &&
+        lenses[group.lenses[0]].region.kind() == RegionKind::kCircle) {
+      inner_.assign(1, reach);
+      return;
+    }
+    // Along each ray, from the reach inwards in half-`near` steps to the first point within
+    // `near` of a region, plus half a step.
+    std::vector<double> found(kBins);
+    for (int k = 0; k < kBins; ++k) {
+      const double a = 2 * std::numbers::pi * k / kBins;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      double t = reach;
+      while (t > 0 && group_distance(group, lenses, centre + t * u) > near) t -= 0.5 * near;
+      found[size_t(k)] = std::max(t, 0.0) + near;
+    }
+    // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
+    // from ray to ray that the ring does not shear the mesh's triangles until they fold.
+    constexpr double kSlope = 0.3;
+    inner_.assign(kBins, 0.0);
+    for (int k = 0; k < kBins; ++k) {
+      for (int j = 0; j < kBins; ++j) {
+        const int steps = std::min(std::abs(k - j), kBins - std::abs(k - j));
+        const double angle = 2 * std::numbers::pi * steps / kBins;
+        inner_[size_t(k)] =
+            std::max(inner_[size_t(k)], found[size_t(j)] * std::exp(-kSlope * angle));
+      }
+    }
+  }
+
+  double inner(const Eigen::Vector2d& u) const {
+    if (inner_.size() == 1) return inner_[0];
+    double a = std::atan2(u.y(), u.x()) / (2 * std::numbers::pi) * kBins;
+    if (a < 0) a += kBins;
+    const int k = std::min(int(a), kBins - 1);
+    const double w = a - k;
+    return (1 - w) * inner_[size_t(k)] + w * inner_[size_t((k + 1) % kBins)];
+  }
+
+  // The footprint's edge along u: the focus's extent scaled by the footprint ratio, within the
+  // group's disk, or short of the image border where that is nearer.
+  // A smooth minimum (the 4-norm of the reciprocals) of the last three, so the edge does not
+  // turn sharply at an image corner, where the ring would shear the mesh's triangles until they
+  // fold.
+  double edge(const Eigen::Vector2d& u) const {
+    const Eigen::Vector2d w = centre - disk_centre;
+    const double b = u.dot(w);
+    const double disk =
+        -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
+    const double outer = std::min(ratio * inner(u), disk);
     const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
     auto quartic = [](double x) { return 1 / ((x * x) * (x * x)); };
     return 1 / std::sqrt(std::sqrt(quartic(outer) + quartic(exits.x()) + quartic(exits.y())));
+  }
+
+  // Where q lies on its ray: at t from the centre, at "radius" s >= t (s = inner where q is in the
+  // focus, growing by at most 1 per unit of t), between inner and edge inside the ring.
+  struct Place {
+    Eigen::Vector2d u = Eigen::Vector2d::Zero();
+    double t = 0, s = 0, inner = 0, edge = 0;
+    bool in_footprint() const { return s < edge * (1 - 1e-12); }
+  };
+  Place place(const Eigen::Vector2d& q, const FocusGroup& group,
+              const std::vector<Lens>& lenses) const {
+    Place p;
+    p.t = (q - centre).norm();
+    p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
+    p.inner = inner(p.u);
+    p.edge = edge(p.u);
+    p.s = std::max(p.t, p.inner + std::max(group_distance(group, lenses, q) - near, 0.0));
+    return p;
   }
 };
 
@@ -144,32 +243,11 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   std::vector<double> fits(lenses.size());
   for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
-    const Ring ring(group, lenses, cell, width, height);
-    double ratio = std::numeric_limits<double>::infinity();
-    constexpr int kRays = 720;
-    for (int k = 0; k < kRays; ++k) {
-      const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
-      const Eigen::Vector2d u(std::cos(a), std::sin(a));
-      if (ray_exits(ring.centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
-      // The ring needs a few cells of the mesh to bend without folding a triangle.
-      ratio = std::min(ratio, (ring.edge(u, width, height) - 2 * cell) / ring.inner);
-    }
+    const double ratio = Ring(group, lenses, cell, width, height).min_ratio();
     for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
   }
   return fits;
 }
-
-namespace {
-
-// The distance from p to the nearest region of `group`, pixels.
-double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
-                      const Eigen::Vector2d& p) {
-  double d = std::numeric_limits<double>::infinity();
-  for (size_t k : group.lenses) d = std::min(d, lenses[k].region.distance(p));
-  return d;
-}
-
-}  // namespace
 
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double width,
@@ -195,27 +273,32 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   parallel_for(size_t(n), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
-      // The group whose footprint p is deepest in (distance over margin), and the nearest focus.
-      double nearest = std::numeric_limits<double>::infinity(), deepest = nearest;
-      int owner = -1, closest = -1;
+      // The nearest focus, and the ring p is deepest in (smallest s over edge).
+      double nearest = std::numeric_limits<double>::infinity(), deepest = 1;
+      int closest = -1;
+      size_t owner = 0;
+      Ring::Place owner_place;
       for (size_t g = 0; g < out.groups.size(); ++g) {
         const double d = group_distance(out.groups[g], lenses, p);
         if (d < nearest) nearest = d, closest = int(g);
-        if (d / out.groups[g].margin < deepest) deepest = d / out.groups[g].margin, owner = int(g);
-        if (d < out.groups[g].margin - near) c.pinned[i] = 0;
+        const Ring::Place place = rings[g].place(p, out.groups[g], lenses);
+        if (place.in_footprint() && place.s / place.edge < deepest) {
+          deepest = place.s / place.edge;
+          owner = g;
+          owner_place = place;
+        }
       }
+      c.pinned[i] = deepest == 1;
       if (nearest <= near) {
         c.focus[i] = closest;
         out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
       }
-      if (owner >= 0) {
-        // The radial bound along this vertex's ray of its group, with the slack; a ray too short
+      if (!c.pinned[i]) {
+        // The radial bound along this vertex's ray of its ring, with the slack; a ray too short
         // for the zoom has no radial solution: the bound then only keeps the context from
         // folding over itself (at most 20, a sliver).
-        const Ring& ring = rings[size_t(owner)];
-        const Eigen::Vector2d u = (p - ring.centre).normalized();
-        const double ratio = std::max(ring.edge(u, width, height) / ring.inner, 1.0 + 1e-9);
-        const double k_power = 1 - ring.log_zoom / std::log(ratio);
+        const double ratio = std::max(owner_place.edge / owner_place.inner, 1.0 + 1e-9);
+        const double k_power = 1 - out.groups[owner].log_zoom / std::log(ratio);
         c.anisotropy(Eigen::Index(i)) = std::min(slack / std::max(k_power, 1e-9), 20.0);
       }
       out.level(Eigen::Index(i)) = c.pinned[i] ? 0.0 : 1.0;
@@ -228,20 +311,15 @@ namespace {
 
 // Moves the rows of X (pixels) by `group`'s power-law ring (see focus_start) at `log_zoom`.
 void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const FocusGroup& group,
-                double log_zoom, double cell, double width, double height) {
+                const Ring& ring, double log_zoom) {
   if (log_zoom <= 0) return;
-  const double near = near_distance(cell);
-  const Ring ring(group, lenses, cell, width, height);
   parallel_for(size_t(X.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
-      const Eigen::Vector2d q = X.row(i).transpose();
-      const Eigen::Vector2d u = q - ring.centre;
-      if (u.norm() == 0) continue;
-      const double edge = ring.edge(u.normalized(), width, height);
-      const double s = ring.inner + std::max(group_distance(group, lenses, q) - near, 0.0);
-      // On or beyond the footprint's edge (an image border point lies on its ray's edge).
-      if (s >= edge * (1 - 1e-12)) continue;
-      const double g = std::exp(log_zoom * std::log(edge / s) / std::log(edge / ring.inner));
+      const Ring::Place p = ring.place(X.row(i).transpose(), group, lenses);
+      // s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge > zoom inner.
+      if (p.t == 0 || !p.in_footprint()) continue;
+      const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
+      const Eigen::Vector2d u = p.t * p.u;
       X.row(i) = (ring.centre + g * u).transpose();
     }
   });
@@ -262,7 +340,7 @@ Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>&
                              double height) {
   Eigen::MatrixX2d X = V;
   for (const FocusGroup& group : groups)
-    apply_ring(X, lenses, group, group.log_zoom, cell, width, height);
+    apply_ring(X, lenses, group, Ring(group, lenses, cell, width, height), group.log_zoom);
   return X;
 }
 
@@ -272,9 +350,10 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
     // The footprints are disjoint, so each group is tried on its own.
+    const Ring ring(group, lenses, cell, width, height);
     for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
       Eigen::MatrixX2d X = mesh.V;
-      apply_ring(X, lenses, group, fraction * group.log_zoom, cell, width, height);
+      apply_ring(X, lenses, group, ring, fraction * group.log_zoom);
       if (folds(X, mesh.F)) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;

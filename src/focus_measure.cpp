@@ -67,15 +67,15 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     lowest[k] = std::min(lowest[k], m);
     highest[k] = std::max(highest[k], m);
   }
-  // Beyond the footprints: farther from every region than its focus group's margin.
-  std::vector<double> log_zooms, margin(n);
+  // Beyond the footprints: outside every focus group's disk (focus_lens.h).
+  std::vector<double> log_zooms;
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-  for (const FocusGroup& g : focus_groups(lenses, log_zooms))
-    for (size_t k : g.lenses) margin[k] = g.margin;
+  const std::vector<FocusGroup> groups = focus_groups(lenses, log_zooms);
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose();
     bool beyond = true;
-    for (size_t j = 0; j < n && beyond; ++j) beyond = lenses[j].region.distance(p) >= margin[j];
+    for (const FocusGroup& g : groups)
+      beyond = beyond && (p - g.centre).norm() >= g.reach + g.margin;
     if (!beyond) continue;
     const size_t k = nearest_lens(lenses, p).first;
     out[k].displacement_beyond_footprint = std::max(

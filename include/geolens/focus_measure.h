@@ -20,8 +20,8 @@ struct FocusMeasure {
   /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
   double footprint_radius = 0;
   /// The largest |screen - source| (pixels) of a mesh vertex nearest this lens and beyond every
-  /// footprint (farther from each region than its focus group's margin, focus_lens.h): 0 when
-  /// everything beyond the footprints is left in place.
+  /// footprint (outside every focus group's disk of radius reach + margin, focus_lens.h): 0
+  /// when everything beyond the footprints is left in place.
   double displacement_beyond_footprint = 0;
 };
 
