@@ -35,13 +35,15 @@ std::string to_string(ClassicLens lens) {
   return "zoom_in";
 }
 
-double classic_source_distance(ClassicLens lens, double u, double zoom) {
+double classic_source_distance(ClassicLens lens, double u, double zoom, double a) {
   require(std::isfinite(u) && u >= 0, "classic_source_distance",
           "screen distance must be finite and >= 0, got " + std::to_string(u));
   require(std::isfinite(zoom) && zoom >= 1, "classic_source_distance",
           "zoom must be finite and >= 1, got " + std::to_string(zoom));
   if (u >= 1) return u;
-  const double a = kFocusFraction, d = zoom - 1;
+  require(std::isfinite(a) && a > 0 && a < 1, "classic_source_distance",
+          "focus fraction must be in (0, 1), got " + std::to_string(a));
+  const double d = zoom - 1;
   switch (lens) {
     case ClassicLens::kZoomIn:
       return u / zoom;
@@ -208,7 +210,7 @@ void validate_lenses(const std::vector<CircleLens>& lenses, double width, double
 std::vector<Ring> lens_rings(const std::vector<CircleLens>& lenses) {
   std::vector<Ring> rings;
   for (const CircleLens& lens : lenses) {
-    rings.push_back({lens.center, kFocusFraction * lens.radius});
+    rings.push_back({lens.center, lens.focus_fraction * lens.radius});
     rings.push_back({lens.center, lens.radius});
   }
   return rings;
@@ -232,7 +234,9 @@ WarpMesh evaluate(ClassicLens kind, const PlaneMesh& mesh, const std::vector<Cir
       const double u = offset.norm() / lens.radius;
       if (u >= 1 - kOnRim || u == 0) continue;
       source.row(i) =
-          (lens.center + offset * (classic_source_distance(kind, u, lens.zoom) / u)).transpose();
+          (lens.center +
+           offset * (classic_source_distance(kind, u, lens.zoom, lens.focus_fraction) / u))
+              .transpose();
     }
   }
   Eigen::MatrixX3i F = mesh.F;

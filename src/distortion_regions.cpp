@@ -18,9 +18,13 @@ void validate(const CircleLens& lens, const char* function) {
           "lens radius must be finite and > 0, got " + std::to_string(lens.radius));
   require(std::isfinite(lens.zoom) && lens.zoom >= 1, function,
           "lens zoom must be finite and >= 1, got " + std::to_string(lens.zoom));
+  require(std::isfinite(lens.focus_fraction) && lens.focus_fraction > 0 && lens.focus_fraction < 1,
+          function, "focus fraction must be in (0, 1), got " + std::to_string(lens.focus_fraction));
 }
 
-double focus_radius(const CircleLens& lens) { return kFocusFraction * lens.radius / lens.zoom; }
+double focus_radius(const CircleLens& lens) {
+  return lens.focus_fraction * lens.radius / lens.zoom;
+}
 
 std::string to_string(Zone zone) {
   switch (zone) {

@@ -126,7 +126,7 @@ struct Ring {
 
   // The footprint's edge along u: the focus's extent scaled by the footprint ratio, within the
   // group's disk, or short of the image border where that is nearer.
-  // A smooth minimum (the 4-norm of the reciprocals) of the last three, so the edge does not
+  // A smooth minimum (the 8-norm of the reciprocals) of the last three, so the edge does not
   // turn sharply at an image corner, where the ring would shear the mesh's triangles until they
   // fold.
   double edge(const Eigen::Vector2d& u) const {
@@ -136,8 +136,11 @@ struct Ring {
         -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
     const double outer = std::min(ratio * inner(u), disk);
     const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
-    auto quartic = [](double x) { return 1 / ((x * x) * (x * x)); };
-    return 1 / std::sqrt(std::sqrt(quartic(outer) + quartic(exits.x()) + quartic(exits.y())));
+    auto power = [](double x) {
+      const double x2 = x * x, x4 = x2 * x2;
+      return 1 / (x4 * x4);
+    };
+    return 1 / std::pow(power(outer) + power(exits.x()) + power(exits.y()), 1.0 / 8);
   }
 
   // Where q lies on its ray: at t from the centre, at "radius" s >= t (s = inner where q is in the

@@ -39,11 +39,20 @@ struct Method {
   std::vector<FocusMeasure> foci;  // per lens, over the region the user gave
 };
 
-// The radius of the classic lenses matched to `lens`: its footprint for a focus lens (the flat
-// tops then show the region at full zoom on the inner half of their disk), else its region.
+// The radius of the classic lenses matched to `lens`: its footprint for a focus lens, else its
+// region.
 double classic_radius(const Lens& lens, const LensOptions& options) {
   return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.size()
                                             : lens.region.size();
+}
+
+// The classic lens matched to `lens` at `zoom`: for a focus lens its flat top shows the region at
+// full zoom (focus fraction zoom / footprint ratio), else the default fraction.
+CircleLens classic_target(const Lens& lens, const LensOptions& options, double zoom) {
+  CircleLens target{lens.region.peak(), classic_radius(lens, options), zoom};
+  if (options.model == LensModel::kFocus)
+    target.focus_fraction = std::min(0.95, zoom / footprint_ratio(lens));
+  return target;
 }
 
 nlohmann::json foci_json(const std::vector<FocusMeasure>& foci) {
@@ -333,8 +342,7 @@ int run_compare(const CompareArgs& a) {
   std::vector<CircleLens> targets;
   std::vector<double> zoom_requested, measure_radius;
   for (size_t k = 0; k < lenses.size(); ++k) {
-    targets.push_back({lenses[k].region.peak(), classic_radius(lenses[k], options),
-                       std::max(1.0, solved.zoom_measured[k])});
+    targets.push_back(classic_target(lenses[k], options, std::max(1.0, solved.zoom_measured[k])));
     zoom_requested.push_back(lenses[k].zoom);
     // The radius GeometricLens measures its zoom over: a grid cell of the solved area, at least
     // 0.05 r (docs/design.md, "Zoom, not height").

@@ -17,8 +17,8 @@ namespace geolens {
 /// given, like the sigma lenses of Pietriga and Appert 2008, as the source point a screen point
 /// shows: a screen point at distance D = u r from the lens centre shows the source point on the
 /// same ray at distance T(u) r, T increasing, T(u) = u for u >= 1. Its magnification at the
-/// centre is 1 / T'(0) = z, the lens's zoom; a = kFocusFraction (0.5) is the inner radius of the
-/// lenses that have one, as a fraction of r, on screen.
+/// centre is 1 / T'(0) = z, the lens's zoom; a = CircleLens::focus_fraction (0.5) is the inner
+/// radius of the lenses that have one, as a fraction of r, on screen.
 enum class ClassicLens {
   /// An inset magnifier (a loupe): the screen disk of radius r shows the source disk of radius
   /// r / z magnified z times and hides the ring r / z < |p - c| < r under it.
@@ -64,8 +64,9 @@ constexpr std::array<ClassicLens, 7> kClassicLenses = {
 std::string to_string(ClassicLens lens);
 
 /// T(u): the normalized source distance shown at normalized screen distance u >= 0 by a lens of
-/// zoom z >= 1 (see ClassicLens). Throws InvalidInput for u < 0 or z < 1 or non-finite values.
-double classic_source_distance(ClassicLens lens, double u, double zoom);
+/// zoom z >= 1 and focus fraction a in (0, 1) (see ClassicLens). Throws InvalidInput for u < 0,
+/// z < 1, a outside (0, 1) or non-finite values.
+double classic_source_distance(ClassicLens lens, double u, double zoom, double a = kFocusFraction);
 
 /// A circle the mesh must follow: no triangle crosses it.
 struct Ring {

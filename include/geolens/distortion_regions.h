@@ -11,27 +11,31 @@
 
 namespace geolens {
 
+/// The default focus fraction, see CircleLens.
+constexpr double kFocusFraction = 0.5;
+
 /// A circular lens as the comparison sees it.
 struct CircleLens {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< source pixels
   double radius = 1;                                 ///< source pixels, > 0
   double zoom = 1;                                   ///< magnification at the centre, >= 1
+  /// The lenses with a flat top show it on this fraction of the radius on screen, in (0, 1).
+  double focus_fraction = kFocusFraction;
 };
 
 /// Throws InvalidInput (naming `function`) unless the centre is finite, the radius finite and
-/// > 0 and the zoom finite and >= 1.
+/// > 0, the zoom finite and >= 1 and the focus fraction in (0, 1).
 void validate(const CircleLens& lens, const char* function);
 
 /// The focus is the inner part of the lens that a flat-top lens of the same radius and zoom
-/// shows at its full zoom: the inner kFocusFraction of the radius on screen, so the source disk
-/// of radius kFocusFraction * radius / zoom. It is a fixed fraction of what the user sees, and
+/// shows at its full zoom: the inner focus_fraction of the radius on screen, so the source disk
+/// of radius focus_fraction * radius / zoom. It is a fixed fraction of what the user sees, and
 /// it is where zoom_in, bifocal and the flat-top lenses are uniform by construction, so their
 /// focus uniformity is exactly 1 and the question the focus answers is how far the other lenses
 /// are from that. (A fixed source fraction such as 0.5 r would not do: at zoom 2 a lens of radius
 /// r cannot show a source disk of r / 2 magnified 2x and still have a transition.)
-constexpr double kFocusFraction = 0.5;
 
-/// Source radius of the focus: kFocusFraction * radius / zoom, pixels.
+/// Source radius of the focus: focus_fraction * radius / zoom, pixels.
 double focus_radius(const CircleLens& lens);
 
 enum class Zone { kFocus, kTransition, kContext };
