@@ -103,14 +103,29 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
   require(std::find(fix_x.begin(), fix_x.end(), 1) != fix_x.end() &&
               std::find(fix_y.begin(), fix_y.end(), 1) != fix_y.end(),
           "Flattener", "the boundary mode fixes no vertex: are the grid sides set?");
-  fix_x_ = fix_x;
-  fix_y_ = fix_y;
-  if (fix_x == fix_y) {
-    solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x);
-  } else {
-    parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x); },
-                    [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y); });
+  fix_x_ = std::move(fix_x);
+  fix_y_ = std::move(fix_y);
+}
+
+void Flattener::factorize() const {
+  if (!solver_x_) {
+    if (fix_x_ == fix_y_) {
+      solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_);
+    } else {
+      parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_); },
+                      [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y_); });
+    }
+    changed_.clear();
+    return;
   }
+  if (changed_.empty()) return;
+  if (solver_y_) {
+    parallel_invoke([&] { solver_x_->refactorize(L_, changed_); },
+                    [&] { solver_y_->refactorize(L_, changed_); });
+  } else {
+    solver_x_->refactorize(L_, changed_);
+  }
+  changed_.clear();
 }
 
 void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
@@ -120,18 +135,14 @@ void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
               std::to_string(rest_.rows()));
   rest_ = V3.leftCols<2>();
   assemble(V3, level, log_scale, focus);
+  if (!solver_x_) return;  // not factorized yet: factorize() will start from this L
   // The rows the lift touches (a triangle with a lifted corner changes all three): where the
-  // next lift's changes will be, for the factorizations' windows.
-  std::vector<char> lifted(size_t(V3.rows()), 0);
+  // next lift's changes will be, for the factorizations' windows. Added to those of the
+  // reweights since the last factorization.
+  changed_.resize(size_t(V3.rows()), 0);
   for (Eigen::Index f = 0; f < F_.rows(); ++f) {
     if (level(F_(f, 0)) > 0 || level(F_(f, 1)) > 0 || level(F_(f, 2)) > 0)
-      lifted[size_t(F_(f, 0))] = lifted[size_t(F_(f, 1))] = lifted[size_t(F_(f, 2))] = 1;
-  }
-  if (solver_y_) {
-    parallel_invoke([&] { solver_x_->refactorize(L_, lifted); },
-                    [&] { solver_y_->refactorize(L_, lifted); });
-  } else {
-    solver_x_->refactorize(L_, lifted);
+      changed_[size_t(F_(f, 0))] = changed_[size_t(F_(f, 1))] = changed_[size_t(F_(f, 2))] = 1;
   }
 }
 
@@ -449,6 +460,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
       for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
       b.row(Eigen::Index(v)) = sum.transpose();
     }
+    factorize();  // the first global step needs it; a start already at the minimum does not
     Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
       parallel_invoke([&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },

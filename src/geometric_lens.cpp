@@ -380,10 +380,7 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
     cache_.flattener =
         std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
                                     flatten_options(r.model), lifted.log_zoom, focus.constraints);
-    cache_.flat = r.model == LensModel::kFocus
-                      ? focus_start(r.mesh.V, lenses, focus.groups, cell_size(box, options_.mesh),
-                                    width_, height_)
-                      : r.mesh.V;
+    cache_.flat = r.mesh.V;
     cache_.predicted.resize(0, 2);
   }
   cache_.box = r.box;
@@ -394,9 +391,14 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   t = Clock::now();
   // A lens dragged steadily moves its flattening steadily: the last update's change added again
   // is the better start (unless it folds a triangle; after a stop or a jump it costs at most an
-  // iteration).
+  // iteration). A focus lens has a better one still: its power-law start.
   const bool predicted = cache_.predicted.rows() == cache_.flat.rows();
-  r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
+  if (r.model == LensModel::kFocus) {
+    r.flattening = flatten_focus(*cache_.flattener, r.mesh.V, lenses, focus.groups,
+                                 cell_size(box, options_.mesh), width_, height_);
+  } else {
+    r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
+  }
   cache_.predicted.resize(0, 2);  // only the first solve of an update has one
   cache_.flat = r.flattening.X;
   r.timings.iterate = ms_since(t);

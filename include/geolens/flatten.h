@@ -100,8 +100,8 @@ struct FlattenResult {
 
 /// The local/global flattener of one lifted mesh. Construction computes the standard triangles
 /// (each 3D triangle laid isometrically in the plane, paper Fig. 4, or the planar triangle
-/// scaled, see Standard), the weights, the global matrix L and its sparse Cholesky
-/// factorization; solve() then iterates.
+/// scaled, see Standard), the weights and the global matrix L; solve() then iterates, and
+/// factorizes L by sparse Cholesky when it first takes a global step (factorize()).
 ///
 /// Energy: E(X) = sum_t sum_{edges (i,j) of t} w_ij ||(x_i - x_j) - M_t (s_i - s_j)||^2
 ///              = sum_t c_t 2 A_t ||J_t - M_t||_F^2,
@@ -125,8 +125,8 @@ class Flattener {
   ~Flattener();
 
   /// Refits the flattener to a new lift of the same mesh (same faces, sides, options): the
-  /// standard triangles and weights are recomputed and the factorizations redone numerically on
-  /// the kept symbolic analysis. For a lens that moved.
+  /// standard triangles and weights are recomputed, and the factorizations will be redone
+  /// numerically on the kept symbolic analysis when a solve needs them. For a lens that moved.
   /// @param V3     #V x 3 lifted vertices, pixels (x, y also become the fixed values)
   /// @param level  #V normalized heights in [0, 1]
   /// @param log_scale  as in the constructor
@@ -139,6 +139,13 @@ class Flattener {
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
   /// `guess` (optional, #V x 2) starts instead unless it folds a triangle.
   FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr) const;
+
+  /// Brings the sparse Cholesky factorizations of the global step up to date with the weights:
+  /// the analysis and factorization of L (x and y on two threads) the first time, the rows the
+  /// reweights since changed after that. solve() calls it before its first global step; a start
+  /// already at the minimum never needs it. Not safe to call from two threads at once (nor
+  /// solve()).
+  void factorize() const;
 
   /// Whether X (#V x 2) can start a flip-safe solve as it is: no triangle folded or degenerate,
   /// every fixed coordinate at its value.
@@ -183,8 +190,11 @@ class Flattener {
   // The corners (3 f + k) at each vertex v: corner_[corner_start_[v] .. corner_start_[v + 1]).
   std::vector<int> corner_start_, corner_;
   std::vector<char> fix_x_, fix_y_;  // #V: the coordinate keeps its fixed value
-  // One solver for both coordinates, or (sliding) one per coordinate.
-  std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
+  // One solver for both coordinates, or (sliding) one per coordinate, factorized on the first
+  // global step a solve takes (factorize()), so a start already at the minimum costs none;
+  // `changed_` holds the rows reweighted since (empty: none).
+  mutable std::unique_ptr<DirichletSolver> solver_x_, solver_y_;
+  mutable std::vector<char> changed_;
 };
 
 /// One-off: builds a Flattener and solves from the projection of V3.
