@@ -104,13 +104,14 @@ struct Ring {
     // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
     // from ray to ray that the ring does not shear the mesh's triangles until they fold.
     constexpr double kSlope = 0.3;
+    std::vector<double> decay(kBins / 2 + 1);  // by the number of bins between two rays
+    for (size_t k = 0; k < decay.size(); ++k)
+      decay[k] = std::exp(-kSlope * 2 * std::numbers::pi * double(k) / kBins);
     inner_.assign(kBins, 0.0);
     for (int k = 0; k < kBins; ++k) {
       for (int j = 0; j < kBins; ++j) {
         const int steps = std::min(std::abs(k - j), kBins - std::abs(k - j));
-        const double angle = 2 * std::numbers::pi * steps / kBins;
-        inner_[size_t(k)] =
-            std::max(inner_[size_t(k)], found[size_t(j)] * std::exp(-kSlope * angle));
+        inner_[size_t(k)] = std::max(inner_[size_t(k)], found[size_t(j)] * decay[size_t(steps)]);
       }
     }
   }

@@ -51,14 +51,14 @@ bool crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double y, doubl
   return true;
 }
 
+}  // namespace
+
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   return (p - (a + t * ab)).norm();
 }
-
-}  // namespace
 
 void validate_polygon(const std::vector<Eigen::Vector2d>& vertices, const char* function) {
   const size_t n = vertices.size();

@@ -77,10 +77,13 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
   };
   impl->peak = field->raster.peak;
   impl->size = impl->thickness(impl->peak);
-  impl->distance = [field](const Eigen::Vector2d& p) {
-    return field->index.contains(p)
-               ? 0.0
-               : field->index.boundary_distance(p, std::numeric_limits<double>::infinity());
+  impl->distance = [field, vertices](const Eigen::Vector2d& p) {
+    if (field->index.contains(p)) return 0.0;
+    // Every edge (the index's bands serve short reaches; this one is unbounded).
+    double d = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < vertices.size(); ++i)
+      d = std::min(d, segment_distance(p, vertices[i], vertices[(i + 1) % vertices.size()]));
+    return d;
   };
   for (const Eigen::Vector2d& v : vertices)
     impl->reach = std::max(impl->reach, (v - impl->peak).norm());

@@ -22,6 +22,10 @@ void validate_polygon(const std::vector<Eigen::Vector2d>& vertices,
 /// that is not two finite numbers. The shape is not checked: see validate_polygon.
 std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path);
 
+/// The distance from p to the segment a-b (a != b), pixels.
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b);
+
 /// Which nodes of the raster origin + cell * (i, j), i in [0, width), j in [0, height) (pixels),
 /// lie inside the polygon (a valid one, see validate_polygon). Returns width * height flags,
 /// row-major. The inside test is the crossing rule of PolygonIndex::contains, so a node on the
