@@ -132,6 +132,25 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
+// A polygon lens: the classic lenses, radial, do not apply; the geometric lens is measured over
+// the region given.
+TEST_F(CompareCli, PolygonLensIsMeasuredAlone) {
+  write_input("in.png", 512);
+  std::ofstream(path("square.txt")) << "200 200\n300 200\n300 280\n200 280\n";
+  const std::string out = path("out");
+  const CliRun r =
+      run("compare " + path("in.png") + " --lens polygon:" + path("square.txt") + ":2 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json methods = report(out).at("methods");
+  ASSERT_EQ(methods.size(), 1u);
+  EXPECT_EQ(methods[0].at("name"), "geometric");
+  const nlohmann::json& lens = methods[0].at("lenses")[0];
+  EXPECT_NEAR(lens.at("zoom").get<double>(), 2, 0.05);
+  EXPECT_LT(lens.at("uniformity").get<double>(), 1.05);
+  EXPECT_EQ(lens.at("displacement_beyond_footprint").get<double>(), 0);
+  EXPECT_FALSE(fs::exists(fs::path(out) / "fisheye.png"));
+}
+
 // With the focus model (the default) the classic lenses get the focus lens's footprint as their
 // radius, so each shows the same region at full zoom: the geometric lens's focus is uniform and
 // undistorted, nothing beyond its footprint moves, and its largest shape distortion is below

@@ -39,10 +39,10 @@ struct Method {
   std::vector<FocusMeasure> foci;  // per lens, over the region the user gave
 };
 
-// The radius of the classic lenses matched to `lens`: its footprint for a focus lens, else its
-// region.
+// The radius of the classic lenses matched to `lens` (and of the disk its regions are measured
+// in): its footprint for a focus lens, else its region's size.
 double classic_radius(const Lens& lens, const LensOptions& options) {
-  return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.size()
+  return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.reach()
                                             : lens.region.size();
 }
 
@@ -208,16 +208,20 @@ std::string report_markdown(const CompareArgs& args, const std::vector<CircleLen
   std::ostringstream md;
   md << "# geolens compare: " << fs::path(args.input).filename().string() << "\n\n";
   for (size_t k = 0; k < lenses.size(); ++k) {
-    md << "Lens " << k + 1 << ": circle at (" << fixed(lenses[k].center.x(), 1) << ", "
+    md << "Lens " << k + 1 << ": disk at (" << fixed(lenses[k].center.x(), 1) << ", "
        << fixed(lenses[k].center.y(), 1) << "), radius " << fixed(lenses[k].radius, 1)
        << " px, zoom requested " << fixed(zoom_requested[k], 3)
        << ", measured on the geometric lens " << fixed(lenses[k].zoom, 3)
-       << "; every classic lens is matched to that zoom (same measure) and radius.\n";
+       << (methods.size() > 1
+               ? "; every classic lens is matched to that zoom (same measure) and radius.\n"
+               : "; the classic lenses are radial and do not apply to polygon and mask lenses, "
+                 "whose regions below are taken in this disk.\n");
   }
   md << "\nShape distortion is s1/s2 - 1 of each triangle's source -> screen Jacobian (0 = shape "
         "kept), mean (weighted by source area) / max per region. Regions by source position: "
-        "focus = within r / (2 zoom) of the centre (what a flat-top lens of the same radius and "
-        "zoom shows on the inner half of its disk), transition = the rest of the lens disk, "
+        "focus = within a r / zoom of the centre (what a flat-top lens of the same radius and "
+        "zoom shows at full zoom on the inner fraction a of its disk), transition = the rest of "
+        "the lens disk, "
         "context = outside. Zoom at centre = magnification_at the first lens's centre. Focus "
         "uniformity = max / min magnification over the focus triangles of a lens (the largest "
         "over the lenses). Occluded = source area not shown, percent of the image. — = no "
@@ -311,10 +315,11 @@ int run_compare(const CompareArgs& a) {
   const LensOptions options = cli::parse_options(a.lens);
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    require(lenses[k].region.kind() == RegionKind::kCircle, "--lens",
-            "lens " + std::to_string(k + 1) + " is a " + to_string(lenses[k].region.kind()) +
-                "; compare supports circle lenses only");
+  // The classic lenses are radial: they take part when every lens is a circle.
+  const bool classic = std::all_of(lenses.begin(), lenses.end(), [](const Lens& lens) {
+    return lens.region.kind() == RegionKind::kCircle;
+  });
+  for (size_t k = 0; k < lenses.size() && classic; ++k) {
     for (size_t j = 0; j < k; ++j) {
       require((lenses[k].region.peak() - lenses[j].region.peak()).norm() >=
                   classic_radius(lenses[k], options) + classic_radius(lenses[j], options),
@@ -324,7 +329,8 @@ int run_compare(const CompareArgs& a) {
     }
   }
   std::vector<std::string> names = {"geometric"};
-  for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
+  if (classic)
+    for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
   std::vector<fs::path> outputs = {dir / "report.json", dir / "report.md",
                                    dir / ("panel." + a.format)};
   for (const std::string& name : names) {
@@ -352,6 +358,7 @@ int run_compare(const CompareArgs& a) {
   std::vector<Method> methods;
   methods.push_back({"geometric", solved.warp, solved.zoom_measured[0], {}, {}});
   for (ClassicLens kind : kClassicLenses) {
+    if (!classic) break;
     MatchedClassicLens matched = match_classic_lens(kind, targets, measure_radius, source.width,
                                                     source.height, a.baseline_mesh);
     methods.push_back({to_string(kind), std::move(matched.warp), matched.zoom_measured[0], {}, {}});
