@@ -172,10 +172,6 @@ double footprint_ratio(const Lens& lens) {
   return lens.footprint > 0 ? lens.footprint : 2 * lens.zoom;
 }
 
-double footprint_margin(const Lens& lens) {
-  return (footprint_ratio(lens) - 1) * lens.region.reach();
-}
-
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
                                      const std::vector<double>& log_zooms) {
   require(log_zooms.size() == lenses.size(), "focus_groups", "one log zoom per lens expected");
@@ -323,8 +319,7 @@ void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const Focu
       // s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge > zoom inner.
       if (p.t == 0 || !p.in_footprint()) continue;
       const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
-      const Eigen::Vector2d u = p.t * p.u;
-      X.row(i) = (ring.centre + g * u).transpose();
+      X.row(i) = (ring.centre + g * p.t * p.u).transpose();
     }
   });
 }

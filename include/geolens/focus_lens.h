@@ -12,13 +12,11 @@
 
 namespace geolens {
 
-/// The footprint of a lens as the ratio R / r_f of the distances from its peak to the footprint's
-/// edge and to the region's edge along the farthest ray: `lens.footprint`, or 2 zoom if that is
-/// 0 (the proportions of a flat-top lens, docs/design.md).
+/// The footprint of a lens as a ratio: the footprint is the focus scaled by it about the lens's
+/// centre (along each ray, R = ratio r_f), within the disk of radius ratio x reach.
+/// `lens.footprint`, or 2 zoom if that is 0 (the proportions of a flat-top lens whose flat top
+/// is half its radius, docs/design.md).
 double footprint_ratio(const Lens& lens);
-
-/// How far the footprint reaches beyond the region, pixels: (footprint_ratio - 1) reach().
-double footprint_margin(const Lens& lens);
 
 /// The least maximum shape distortion s1 / s2 - 1 of any radial lens that magnifies a disk of
 /// radius r_f uniformly by `zoom` and leaves everything beyond R = ratio r_f in place:
@@ -38,7 +36,7 @@ struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
   double reach = 0;            ///< pixels
-  double margin = 0;           ///< how far the footprint reaches beyond the regions, pixels
+  double margin = 0;           ///< the footprint lies in the disk of radius reach + margin, pixels
   double log_zoom = 0;         ///< the focus's
 };
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
@@ -61,9 +59,9 @@ struct FocusField {
   std::vector<FocusGroup> groups;  ///< focus_groups of the lenses
   /// Focus: every vertex within sqrt(2) cells of a region (so every triangle that meets the
   /// region is whole in its focus), with the index of the nearest group. Pinned: every vertex
-  /// within sqrt(2) cells of leaving every footprint (so every point beyond the footprints lies
-  /// in a triangle that does not move). Anisotropy: the radial bound along the vertex's ray
-  /// from the centre of the group whose footprint it is deepest in, times `slack`.
+  /// that no group's ring (focus_start) moves, on or beyond every footprint's edge. Anisotropy:
+  /// the radial bound along the vertex's ray from the centre of the group whose ring it is
+  /// deepest in, times `slack`.
   FocusConstraints constraints;
   Eigen::VectorXd log_scale;  ///< #V the group's log zoom in its focus, 0 elsewhere
   Eigen::VectorXd level;      ///< #V 1 where the vertex may move, 0 where pinned
