@@ -13,10 +13,6 @@ namespace geolens {
 
 namespace {
 
-// A mesh vertex within sqrt(2) cells of a curve has a triangle crossing it: the focus (and the
-// footprint's edge) as the mesh holds them are that much wider (narrower).
-double near_distance(double cell) { return std::numbers::sqrt2 * cell; }
-
 // Where the ray from c (in or on the image rectangle) along the unit vector u meets the lines of
 // the image's vertical and of its horizontal sides, pixels (infinite if parallel to them).
 Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, double width,
@@ -46,13 +42,13 @@ struct Ring {
   double log_zoom, disk_radius, ratio, near, cell, width, height;
   std::vector<double> inner_;  // per bin, or one value for a circle about its centre
 
-  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double width_,
-       double height_)
+  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
+       double width_, double height_)
       : disk_centre(group.centre),
         log_zoom(group.log_zoom),
         disk_radius(group.reach + group.margin),
         ratio(1 + group.margin / group.reach),
-        near(near_distance(cell_)),
+        near(band),
         cell(cell_),
         width(width_),
         height(height_) {
@@ -91,15 +87,16 @@ struct Ring {
       inner_.assign(1, reach);
       return;
     }
-    // Along each ray, from the reach inwards in half-`near` steps to the first point within
-    // `near` of a region, plus half a step.
+    // Along each ray, from the reach inwards in half-cell steps to the first point within
+    // `near` of a region, plus a step and `near` (the vertices of the focus between two rays).
+    const double step = 0.5 * cell;
     std::vector<double> found(kBins);
     for (int k = 0; k < kBins; ++k) {
       const double a = 2 * std::numbers::pi * k / kBins;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
       double t = reach;
-      while (t > 0 && group_distance(group, lenses, centre + t * u) > near) t -= 0.5 * near;
-      found[size_t(k)] = std::max(t, 0.0) + near;
+      while (t > 0 && group_distance(group, lenses, centre + t * u) > near) t -= step;
+      found[size_t(k)] = std::min(std::max(t, 0.0) + step + near, reach);
     }
     // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
     // from ray to ray that the ring does not shear the mesh's triangles until they fold.
@@ -219,7 +216,7 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
     for (size_t j = i + 1; j < groups.size(); ++j) {
       FocusGroup &a = groups[i], &b = groups[j];
       const double room = (a.centre - b.centre).norm() - a.reach - b.reach;
-      if (a.margin + b.margin <= room) continue;
+      if (a.margin + b.margin <= std::max(room, 0.0)) continue;
       const double scale = std::max(room, 0.0) / (a.margin + b.margin);
       a.margin *= scale;
       b.margin *= scale;
@@ -237,33 +234,33 @@ double radial_distortion_bound(double zoom, double ratio) {
   return k > 0 ? 1 / k - 1 : std::numeric_limits<double>::infinity();
 }
 
-std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double width,
-                                  double height) {
+std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
+                                  double width, double height) {
   std::vector<double> log_zooms;
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   std::vector<double> fits(lenses.size());
   for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
-    const double ratio = Ring(group, lenses, cell, width, height).min_ratio();
+    const double ratio = Ring(group, lenses, cell, band, width, height).min_ratio();
     for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
   }
   return fits;
 }
 
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
-                       const std::vector<double>& log_zooms, double cell, double width,
+                       const std::vector<double>& log_zooms, double cell, double band, double width,
                        double height, double slack) {
   require(log_zooms.size() == lenses.size(), "focus_field", "one log zoom per lens expected");
-  require(std::isfinite(cell) && cell > 0 && std::isfinite(slack) && slack >= 1, "focus_field",
-          "cell must be > 0 and slack >= 1");
+  require(std::isfinite(cell) && cell > 0 && std::isfinite(band) && band >= 0 &&
+              std::isfinite(slack) && slack >= 1,
+          "focus_field", "cell must be > 0, band >= 0 and slack >= 1");
   for (double z : log_zooms)
     require(std::isfinite(z) && z >= 0, "focus_field",
             "log zoom must be finite and >= 0, got " + std::to_string(z));
   const Eigen::Index n = V.rows();
-  const double near = near_distance(cell);
   FocusField out;
   out.groups = focus_groups(lenses, log_zooms);
   std::vector<Ring> rings;
-  for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, width, height);
+  for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, band, width, height);
   FocusConstraints& c = out.constraints;
   c.focus.assign(size_t(n), -1);
   c.pinned.assign(size_t(n), 1);
@@ -289,7 +286,7 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
         }
       }
       c.pinned[i] = deepest == 1;
-      if (nearest <= near) {
+      if (nearest <= band) {
         c.focus[i] = closest;
         out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
       }
@@ -335,21 +332,21 @@ bool folds(const Eigen::MatrixX2d& X, const Eigen::MatrixX3i& F) {
 }  // namespace
 
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
-                             const std::vector<FocusGroup>& groups, double cell, double width,
-                             double height) {
+                             const std::vector<FocusGroup>& groups, double cell, double band,
+                             double width, double height) {
   Eigen::MatrixX2d X = V;
   for (const FocusGroup& group : groups)
-    apply_ring(X, lenses, group, Ring(group, lenses, cell, width, height), group.log_zoom);
+    apply_ring(X, lenses, group, Ring(group, lenses, cell, band, width, height), group.log_zoom);
   return X;
 }
 
 std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
-                                    double cell, double width, double height) {
+                                    double cell, double band, double width, double height) {
   std::vector<double> log_zooms, zooms(lenses.size(), 1.0);
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
     // The footprints are disjoint, so each group is tried on its own.
-    const Ring ring(group, lenses, cell, width, height);
+    const Ring ring(group, lenses, cell, band, width, height);
     for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
       Eigen::MatrixX2d X = mesh.V;
       apply_ring(X, lenses, group, ring, fraction * group.log_zoom);
@@ -363,11 +360,31 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double width, double height) {
-  const Eigen::MatrixX2d start = focus_start(V, lenses, groups, cell, width, height);
-  if (!flattener.admissible(start)) return flattener.solve(V);
-  flattener.admit_anisotropy(start);
-  return flattener.solve(start);
+                            double cell, double band, double width, double height) {
+  // The full start, else one at lower zooms (the solve then raises them), else the identity.
+  for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
+    std::vector<FocusGroup> lowered = groups;
+    for (FocusGroup& g : lowered) g.log_zoom *= fraction;
+    const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height);
+    if (!flattener.admissible(start)) continue;
+    flattener.admit_anisotropy(start);
+    return flattener.solve(start);
+  }
+  return flattener.solve(V);
+}
+
+}  // namespace geolens
+
+namespace geolens {
+
+bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {
+  return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {
+    return lens.region.kind() == RegionKind::kCircle && lens.region.size() >= 3 * cell;
+  });
+}
+
+double focus_band(const std::vector<Lens>& lenses, double cell) {
+  return meshed_along_circles(lenses, cell) ? 1e-6 * cell : std::numbers::sqrt2 * cell;
 }
 
 }  // namespace geolens

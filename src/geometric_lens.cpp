@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "geolens/baselines.h"
 #include "geolens/distortion.h"
 #include "geolens/errors.h"
 #include "geolens/focus_lens.h"
@@ -196,6 +197,26 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
   }
   box = box.intersection(image);
   Grid patch = make_grid(box.sizes().x(), box.sizes().y(), options_.mesh);
+  if (focus && meshed_along_circles(lenses, cell_size(box, options_.mesh))) {
+    // Vertices on every focus circle and footprint edge, so no triangle crosses them.
+    std::vector<Ring> rings;
+    std::vector<double> log_zooms;
+    for (const Lens& lens : lenses) {
+      rings.push_back({lens.region.peak() - box.min(), lens.region.size()});
+      log_zooms.push_back(std::log(lens.zoom));
+    }
+    for (const FocusGroup& g : focus_groups(lenses, log_zooms))
+      rings.push_back({g.centre - box.min(), g.reach + g.margin});
+    const PlaneMesh ringed = ringed_grid(box.sizes().x(), box.sizes().y(), options_.mesh, rings);
+    patch.V = ringed.V;
+    patch.F = ringed.F;
+    patch.sides.assign(size_t(patch.V.rows()), 0);
+    for (Eigen::Index i = 0; i < patch.V.rows(); ++i) {
+      const Eigen::Vector2d p = patch.V.row(i);
+      patch.sides[size_t(i)] = (p.x() == 0 ? kLeft : 0) | (p.x() == box.sizes().x() ? kRight : 0) |
+                               (p.y() == 0 ? kTop : 0) | (p.y() == box.sizes().y() ? kBottom : 0);
+    }
+  }
   patch.V.rowwise() += box.min().transpose();
   return patch;
 }
@@ -214,7 +235,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   Eigen::AlignedBox2d box;
   const double cell = base_grid(lenses, box).cell;
-  fits = fitting_zooms(lenses, cell, width_, height_);
+  fits = fitting_zooms(lenses, cell, focus_band(lenses, cell), width_, height_);
   std::vector<Lens> out = lenses;
   auto lower = [&](const std::vector<double>& caps) {
     for (size_t k = 0; k < out.size(); ++k) {
@@ -226,7 +247,9 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
   };
   lower(fits);
   // Then what the mesh of the clamped lenses can hold without folding.
-  lower(unfolding_zooms(base_grid(out, box), out, cell_size(box, options_.mesh), width_, height_));
+  const PlanarMesh mesh = base_grid(out, box);
+  const double out_cell = cell_size(box, options_.mesh);
+  lower(unfolding_zooms(mesh, out, out_cell, focus_band(out, out_cell), width_, height_));
   return out;
 }
 
@@ -264,7 +287,8 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
   if (r.model == LensModel::kFocus) {
     // The focus field read as a lift (for --export-mesh): z = log zoom times the solved area's
     // long side.
-    focus = focus_field(r.mesh.V, lenses, heights, cell_size(box, options_.mesh), width_, height_);
+    const double cell = cell_size(box, options_.mesh);
+    focus = focus_field(r.mesh.V, lenses, heights, cell, focus_band(lenses, cell), width_, height_);
     lifted.V.resize(r.mesh.V.rows(), 3);
     lifted.V.leftCols<2>() = r.mesh.V;
     lifted.V.col(2) = focus.log_scale * box.sizes().maxCoeff();
@@ -341,8 +365,9 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
 
   t = Clock::now();
   if (r.model == LensModel::kFocus) {
-    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, focus.groups,
-                                 cell_size(box, options_.mesh), width_, height_);
+    const double cell = cell_size(box, options_.mesh);
+    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, focus.groups, cell,
+                                 focus_band(lenses, cell), width_, height_);
   } else {
     r.flattening = flattener.solve(r.mesh.V);
   }
@@ -370,7 +395,8 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   // focus lens's also needs the same pinned vertices.
   const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
                              (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9 &&
-                             focus.constraints.pinned == cache_.pinned;
+                             focus.constraints.pinned == cache_.pinned &&
+                             cache_.faces.rows() == r.mesh.F.rows() && cache_.faces == r.mesh.F;
   if (same_topology && cache_.model == r.model) {
     cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus.constraints);
     const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
@@ -385,6 +411,7 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   }
   cache_.box = r.box;
   cache_.pinned = std::move(focus.constraints.pinned);
+  cache_.faces = r.mesh.F;
   cache_.model = r.model;
   r.timings.factorize = ms_since(t);
 
@@ -394,8 +421,9 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
   // iteration). A focus lens has a better one still: its power-law start.
   const bool predicted = cache_.predicted.rows() == cache_.flat.rows();
   if (r.model == LensModel::kFocus) {
-    r.flattening = flatten_focus(*cache_.flattener, r.mesh.V, lenses, focus.groups,
-                                 cell_size(box, options_.mesh), width_, height_);
+    const double cell = cell_size(box, options_.mesh);
+    r.flattening = flatten_focus(*cache_.flattener, r.mesh.V, lenses, focus.groups, cell,
+                                 focus_band(lenses, cell), width_, height_);
   } else {
     r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
   }

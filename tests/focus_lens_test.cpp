@@ -266,7 +266,10 @@ TEST(FocusLens, ThousandRandomSetups) {
       for (size_t k : g.lenses) {
         if (f[k].zoom < 1 - 1e-6) {
           ++shrunk;
-          ADD_FAILURE() << "setup " << setup << " lens " << k << " shrunk to " << f[k].zoom;
+          ADD_FAILURE() << "setup " << setup << " lens " << k << " shrunk to " << f[k].zoom
+                        << " (fit " << r.zoom_fits[k] << ", centre "
+                        << lenses[k].region.peak().transpose() << ", radius "
+                        << lenses[k].region.size() << ")";
         }
         if (g.lenses.size() > 1) continue;
         // A lens that does not fit is solved at the largest zoom that does.

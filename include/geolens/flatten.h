@@ -86,7 +86,7 @@ struct FocusConstraints {
   std::vector<int> focus;      ///< #V index of the lens whose focus holds the vertex, or -1
   std::vector<char> pinned;    ///< #V 1: the vertex keeps its position
   Eigen::VectorXd anisotropy;  ///< #V bound K >= 1 on s1 / s2 outside the foci
-  double focus_weight = 10;    ///< > 0
+  double focus_weight = 1000;  ///< > 0
   bool empty() const { return focus.empty(); }
 };
 

@@ -148,6 +148,7 @@ class GeometricLens {
     Eigen::MatrixX2d predicted;  // flat + change: the candidate start of this update's first solve
     Eigen::AlignedBox2d box;     // the area it covers
     std::vector<char> pinned;    // the flattener's pinned vertices (kFocus)
+    Eigen::MatrixX3i faces;      // its triangles (a circle's ringed grid depends on the lens)
     LensModel model = LensModel::kFocus;  // the flattener's
     std::vector<Lens> lenses;
     LensResult result;
