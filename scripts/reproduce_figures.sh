@@ -435,11 +435,13 @@ for zoom in [2, 3]:
         P(f"| {zoom} | {ratio} | {measured:.2f} | {bound:.2f} | {gmax:.2f} | {radius:.2f} | " +
           " | ".join(cell(n) for n in classic) + " |")
 P("")
-P(f"The focus lens is {min(within):.2f} to {max(within):.2f} times the bound. It is a radial "
-  "power-law ring on a 200 x 200 grid that does not follow the focus boundary: its triangles "
-  "across that boundary are held in the focus (up to 1.4 cells wider than the region) and the "
-  "ring starts there, and its anisotropy bound has a 10 % slack; the flat tops and the bifocal, "
-  "of the same focus and footprint, distort more.\n")
+P(f"The focus lens is {min(within):.2f} to {max(within):.2f} times the bound (the issue asks for "
+  "at most 1.25). It is the bound-reaching power ring on a 200 x 200 grid with vertices on the "
+  "focus circle and the footprint's edge; what it adds is the piecewise-linear mesh (its largest "
+  "distortion sits in the triangles next to the focus circle, where the ring bends most) and, "
+  "where the ring is not feasible, the 10 % slack of its anisotropy bound. The flat tops and the "
+  "bifocal, of the same focus and footprint, distort more at every footprint; the fisheyes less, "
+  "with foci that are not uniform.\n")
 
 if warnings:
     P("Warnings printed by the runs:\n")
