@@ -169,16 +169,12 @@ GeometricLens::GeometricLens(double width, double height, const LensOptions& opt
   grid_ = make_grid(width, height, options.mesh);
 }
 
-// The grid the lift is built on: the image's, or a local patch around the lenses whose border
-// carries the sides flags so the flattening pins it.
-Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const {
+// The area solved: the image, or a local patch around the lenses (kFocus: their footprints).
+Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) const {
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
   const bool focus = model_for(lenses) == LensModel::kFocus;
-  if ((options_.extent == Extent::kGlobal && !focus) || lenses.empty()) {
-    box = image;
-    return grid_;
-  }
-  box.setEmpty();
+  if ((options_.extent == Extent::kGlobal && !focus) || lenses.empty()) return image;
+  Eigen::AlignedBox2d box;
   if (focus) {
     // Every footprint lies within its group's reach plus margin of the group's centre.
     std::vector<double> log_zooms;
@@ -187,17 +183,27 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
       const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.reach + g.margin);
       box.extend(g.centre - half).extend(g.centre + half);
     }
+    return box.intersection(image);
   }
   for (const Lens& lens : lenses) {
-    if (focus) break;
     const Eigen::Vector2d centre = lens.region.bounds().center();
     const Eigen::Vector2d half = 0.5 * lens.region.bounds().sizes().array() +
                                  (options_.extent_factor - 1) * lens.region.size();
     box.extend(centre - half).extend(centre + half);
   }
-  box = box.intersection(image);
+  return box.intersection(image);
+}
+
+// The grid the lift is built on: the image's, or one over the solved box whose border carries
+// the sides flags so the flattening pins it; for focus lenses on circles, with vertices on every
+// focus circle and footprint edge.
+Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const {
+  box = solved_box(lenses);
+  const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
+  if (box.isApprox(image) && model_for(lenses) != LensModel::kFocus) return grid_;
   Grid patch = make_grid(box.sizes().x(), box.sizes().y(), options_.mesh);
-  if (focus && meshed_along_circles(lenses, cell_size(box, options_.mesh))) {
+  if (model_for(lenses) == LensModel::kFocus &&
+      meshed_along_circles(lenses, cell_size(box, options_.mesh))) {
     // Vertices on every focus circle and footprint edge, so no triangle crosses them.
     std::vector<Ring> rings;
     std::vector<double> log_zooms;
@@ -233,8 +239,8 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
   fits.clear();
   if (model_for(lenses) != LensModel::kFocus) return lenses;
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
-  Eigen::AlignedBox2d box;
-  const double cell = base_grid(lenses, box).cell;
+  Eigen::AlignedBox2d box = solved_box(lenses);
+  const double cell = cell_size(box, options_.mesh);
   fits = fitting_zooms(lenses, cell, focus_band(lenses, cell), width_, height_);
   std::vector<Lens> out = lenses;
   auto lower = [&](const std::vector<double>& caps) {

@@ -122,6 +122,7 @@ class GeometricLens {
   double height() const { return height_; }
 
  private:
+  Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
   // kFocus: the lenses with each zoom lowered to the largest that fits (footprints kept), and
