@@ -132,6 +132,29 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
+// --sweep: one lens over footprints zoom + 1 to 4 zoom, every method at each, as JSON, Markdown
+// and a plot; two lenses are refused.
+TEST_F(CompareCli, SweepWritesTheTradeOff) {
+  write_input("in.png", 512);
+  const std::string out = path("out");
+  const CliRun r =
+      run("compare " + path("in.png") + " --lens circle:256,256,25:2 --sweep -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(fs::path(out) / "sweep.json");
+  const nlohmann::json points = nlohmann::json::parse(in).at("points");
+  EXPECT_EQ(points.size(), 4 * std::size(kMethods));  // F = 3, 4, 6, 8
+  for (const auto& p : points) {
+    EXPECT_GT(p.at("ratio").get<double>(), 2);
+    EXPECT_GE(p.at("shape_max").get<double>(), 0);
+  }
+  EXPECT_GT(load_image((fs::path(out) / "sweep.png").string()).width, 0);
+  EXPECT_TRUE(fs::exists(fs::path(out) / "sweep.md"));
+  EXPECT_EQ(run("compare " + path("in.png") +
+                " --lens circle:100,100,20 --lens circle:400,400,20 --sweep -o " + path("two"))
+                .code,
+            2);
+}
+
 // A polygon lens: the classic lenses, radial, do not apply; the geometric lens is measured over
 // the region given.
 TEST_F(CompareCli, PolygonLensIsMeasuredAlone) {

@@ -19,6 +19,7 @@
 #include "geolens/file_io.h"
 #include "geolens/focus_lens.h"
 #include "geolens/focus_measure.h"
+#include "geolens/footprint_sweep.h"
 #include "geolens/geometric_lens.h"
 #include "geolens/heatmap.h"
 #include "geolens/image.h"
@@ -287,8 +288,68 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
   c->add_option("--heat-max", a.heat_max,
                 "shape distortion drawn red (0: the largest over all methods)")
       ->capture_default_str();
+  c->add_flag("--sweep", a.sweep,
+              "one lens: its largest shape distortion against its footprint ratio (zoom + 1 to "
+              "4 x zoom), the focus lens against every classic lens and the radial bound: "
+              "sweep.json, sweep.md and a plot sweep.FORMAT");
   return c;
 }
+
+namespace {
+
+// --sweep: the footprint sweep of one lens, written as JSON, Markdown and a plot.
+int run_sweep(const CompareArgs& a, const fs::path& dir, const Image& source, const Lens& lens,
+              const LensOptions& options) {
+  const double z = lens.zoom;
+  std::vector<double> ratios = {z + 1, 1.5 * z, 2 * z, 3 * z, 4 * z};
+  std::sort(ratios.begin(), ratios.end());
+  ratios.erase(std::unique(ratios.begin(), ratios.end()), ratios.end());
+  const Sweep sweep =
+      footprint_sweep(source.width, source.height, lens, options, ratios, a.baseline_mesh);
+  nlohmann::json rows = nlohmann::json::array();
+  std::ostringstream md;
+  md << "# geolens compare --sweep: " << fs::path(a.input).filename().string() << "\n\n"
+     << "Largest shape distortion s1/s2 - 1 of each method against the footprint ratio F (the "
+        "focus lens's `--footprint`; every classic lens has radius F r and a flat top of the "
+        "region's size), the focus uniformity (max / min magnification over the region) in "
+        "brackets where it is above 1.01, and the radial bound 1 / (1 - ln zoom / ln F) - 1 at "
+        "the zoom the focus lens reached.\n\n| F | zoom | bound |";
+  std::vector<std::string> methods;
+  for (const SweepPoint& p : sweep.points)
+    if (std::find(methods.begin(), methods.end(), p.method) == methods.end())
+      methods.push_back(p.method);
+  for (const std::string& m : methods) md << " " << m << " |";
+  md << "\n|---:|---:|---:|";
+  for (size_t m = 0; m < methods.size(); ++m) md << "---:|";
+  md << "\n";
+  for (size_t i = 0; i < sweep.ratios.size(); ++i) {
+    const SweepPoint* geometric = nullptr;
+    for (const SweepPoint& p : sweep.points)
+      if (p.ratio == sweep.ratios[i] && p.method == "geometric") geometric = &p;
+    md << "| " << fixed(sweep.ratios[i], 2) << " | " << fixed(geometric->zoom, 3) << " | "
+       << fixed(sweep.bound[i], 3) << " |";
+    for (const SweepPoint& p : sweep.points) {
+      if (p.ratio != sweep.ratios[i]) continue;
+      md << " " << fixed(p.shape_max, 3)
+         << (p.uniformity > 1.01 ? " (" + fixed(p.uniformity, 2) + ")" : "") << " |";
+      rows.push_back({{"method", p.method},
+                      {"ratio", p.ratio},
+                      {"zoom", p.zoom},
+                      {"uniformity", p.uniformity},
+                      {"shape_max", p.shape_max},
+                      {"footprint_radius", p.footprint_radius},
+                      {"bound", sweep.bound[i]}});
+    }
+    md << "\n";
+  }
+  if (!fs::exists(dir)) fs::create_directory(dir);
+  save_image((dir / ("sweep." + a.format)).string(), plot_sweep(sweep), a.jpeg_quality);
+  write_file((dir / "sweep.json").string(), nlohmann::json({{"points", rows}}).dump(2) + "\n");
+  write_file((dir / "sweep.md").string(), md.str());
+  return 0;
+}
+
+}  // namespace
 
 int run_compare(const CompareArgs& a) {
   // Validate everything before any work.
@@ -315,6 +376,15 @@ int run_compare(const CompareArgs& a) {
   const LensOptions options = cli::parse_options(a.lens);
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
+  if (a.sweep) {
+    require(lenses.size() == 1, "--sweep", "sweeps one lens, got " + std::to_string(lenses.size()));
+    for (const char* name : {"sweep.json", "sweep.md"})
+      require(!same_file(a.input, (dir / name).string()), "--output",
+              "'" + (dir / name).string() + "' would overwrite the input file");
+    require(!same_file(a.input, (dir / ("sweep." + a.format)).string()), "--output",
+            "the plot would overwrite the input file");
+    return run_sweep(a, dir, source, lenses.front(), options);
+  }
   // The classic lenses are radial: they take part when every lens is a circle.
   const bool classic = std::all_of(lenses.begin(), lenses.end(), [](const Lens& lens) {
     return lens.region.kind() == RegionKind::kCircle;

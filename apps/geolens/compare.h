@@ -16,6 +16,7 @@ struct CompareArgs {
   int tile = 256;              ///< panel tile side, pixels, in [64, 1024]
   int baseline_mesh = 200;     ///< classic lens grid vertices along the long side, [4, 1000]
   double heat_max = 0;         ///< distortion shown red; 0 = the largest over all methods
+  bool sweep = false;          ///< the footprint sweep instead of the comparison
 };
 
 /// Registers the `compare` subcommand and its options on `app`.
