@@ -93,15 +93,14 @@ focus_case line text "polygon:$TMP/line.txt:2"
 focus_case paragraph text "polygon:$TMP/paragraph.txt:2"
 focus_case graph graph circle:505,225,110:2
 focus_case map map circle:512,512,120:2.5
-# The trade-off: each footprint ratio F at zoom 2 and 3, the focus lens (grid 200) against every
-# classic lens of the same focus and footprint, and the radial bound.
-for zoom in 2 3; do
-  for ratio in $((zoom + 1)) $((2 * zoom)) $((3 * zoom)) $((4 * zoom)); do
-    "$GEOLENS" compare "$TMP/inputs/grid.png" -o "$TMP/tradeoff_${zoom}_$ratio" \
-      --lens "circle:256,256,$((200 / ratio)):$zoom" --footprint "$ratio" --mesh 200 \
-      --format jpg --tile 64 2>>"$TMP/warnings.txt"
-  done
-done
+# The trade-off: `compare --sweep` at zoom 2 and 3, a circle small enough that its largest
+# footprint stays inside the image (grid 200 for the focus lens, 400 for the classic lenses).
+"$GEOLENS" compare "$TMP/inputs/grid.png" -o "$TMP/sweep2" --lens circle:256,256,30:2 --sweep \
+  --mesh 200 --baseline-mesh 400 2>>"$TMP/warnings.txt"
+"$GEOLENS" compare "$TMP/inputs/grid.png" -o "$TMP/sweep3" --lens circle:256,256,20:3 --sweep \
+  --mesh 200 --baseline-mesh 400 2>>"$TMP/warnings.txt"
+cp "$TMP/sweep2/sweep.png" "$OUT/sweep_zoom2.png"
+cp "$TMP/sweep3/sweep.png" "$OUT/sweep_zoom3.png"
 
 python3 - "$TMP" >"$TMP/reproduction.md" <<'EOF'
 import json, re, sys
@@ -410,38 +409,29 @@ for case in ["line", "paragraph", "graph", "map"]:
 P("### The trade-off against the best possible radial lens\n")
 P("A radial lens that magnifies a disk of radius r_f uniformly by M and leaves everything beyond "
   "R = F r_f in place has a shape distortion of at least 1 / (1 - ln M / ln F) - 1 somewhere "
-  "(`radial_distortion_bound`); the classic lens `power_ring` reaches it. Grid 512 x 512, a circle "
-  "of r_f = 200 / F px at the centre, footprint ratio F; every classic lens gets radius F r_f, "
-  "so its flat top is the same region at full zoom. Largest shape distortion (uniformity of the "
-  "focus in brackets where it is not 1):\n")
-classic = ["power_ring", "flattop_cosine", "flattop_linear", "bifocal", "fisheye_smooth", "fisheye"]
-P("| zoom | F | zoom reached | bound | focus lens | footprint radius / R | " + " | ".join(classic) + " |")
-P("|---:|---:|---:|---:|---:|---:|" + "---:|" * len(classic))
-import math
+  "(`radial_distortion_bound`); the classic lens `power_ring` reaches it. `geolens compare "
+  "--sweep` solves one lens at footprint ratios F from zoom + 1 to 4 x zoom and every classic "
+  "lens with radius F r_f and a flat top of the region's size, matched to the zoom reached. Grid "
+  "512 x 512, a circle of r_f = 30 px (zoom 2) and 20 px (zoom 3) at the centre, so that every "
+  "footprint stays inside the image; largest shape distortion, the focus uniformity in brackets "
+  "where it is above 1.01; in the plots a filled point has a uniform focus, a hollow one not, and "
+  "the dashed line is the bound.\n")
 within = []
 for zoom in [2, 3]:
-    for ratio in [zoom + 1, 2 * zoom, 3 * zoom, 4 * zoom]:
-        r = report(f"tradeoff_{zoom}_{ratio}")
-        measured = r["geometric"]["zoom_center"]
-        bound = 1 / (1 - math.log(measured) / math.log(ratio)) - 1
-        g = r["geometric"]
-        gmax = zone(g, "overall", "max")
-        within.append(gmax / bound)
-        radius = r["geometric"]["lenses"][0]["footprint_radius"] / 200.0
-        def cell(name):
-            m = r[name]
-            u = m["lenses"][0]["uniformity"]
-            return f"{zone(m, 'overall', 'max'):.2f}" + ("" if u < 1.01 else f" ({u:.2f})")
-        P(f"| {zoom} | {ratio} | {measured:.2f} | {bound:.2f} | {gmax:.2f} | {radius:.2f} | " +
-          " | ".join(cell(n) for n in classic) + " |")
-P("")
+    text = open(f"{tmp}/sweep{zoom}/sweep.md").read()
+    P(f"**Zoom {zoom}**\n")
+    P(text[text.index("| F |"):])
+    P(f"![sweep at zoom {zoom}](reproduction/sweep_zoom{zoom}.png)\n")
+    for p in json.load(open(f"{tmp}/sweep{zoom}/sweep.json"))["points"]:
+        if p["method"] == "geometric":
+            within.append(p["shape_max"] / p["bound"])
 P(f"The focus lens is {min(within):.2f} to {max(within):.2f} times the bound (the issue asks for "
   "at most 1.25). It is the bound-reaching power ring on a 200 x 200 grid with vertices on the "
   "focus circle and the footprint's edge; what it adds is the piecewise-linear mesh (its largest "
   "distortion sits in the triangles next to the focus circle, where the ring bends most) and, "
   "where the ring is not feasible, the 10 % slack of its anisotropy bound. The flat tops and the "
   "bifocal, of the same focus and footprint, distort more at every footprint; the fisheyes less, "
-  "with foci that are not uniform.\n")
+  "with foci that are not uniform; the zoom-in distorts nothing and hides a ring.\n")
 
 if warnings:
     P("Warnings printed by the runs:\n")
