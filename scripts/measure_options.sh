@@ -51,9 +51,10 @@ for row in "${ROWS[@]}"; do
   for ((rep = 0; rep < REPEATS; rep++)); do
     base="$TMP/row_${id}_$rep"
     read -ra extra_args <<<"$extra"
+    # The paper's lift: these options are its (the focus model, the default, takes none of them).
     cmd=("$GEOLENS" magnify "$IMAGE" -o "$base.png" --lens "circle:512,512,150:$zoom"
-      --profile "$profile" --texture "$texture" --weights "$weights" "${extra_args[@]}"
-      --stats "$base.json")
+      --model lift --profile "$profile" --texture "$texture" --weights "$weights"
+      "${extra_args[@]}" --stats "$base.json")
     echo "${cmd[*]}" >"$base.cmd"
     rc=0
     "${cmd[@]}" 2>"$base.err" >/dev/null || rc=$?
