@@ -30,7 +30,7 @@ enum class Extent {
 Extent parse_extent(const std::string& name);  ///< "global" | "local"
 std::string to_string(Extent extent);
 
-/// How the lift becomes a magnification (docs/design.md, "Lens models").
+/// What a lens magnifies and how (docs/design.md, "Focus lenses" and "Lens models").
 enum class LensModel {
   /// The region is the focus: magnified as a whole by its zoom (a similarity, translated to fit
   /// but not rotated), the context giving way within the lens's footprint, with its shape
@@ -60,8 +60,8 @@ struct LensOptions {
   TextureWeights texture = TextureWeights::kCotan;
   SubdivisionOptions subdivision;
   FlattenOptions flatten;
-  /// Bump heights are calibrated until every lens's measured zoom is within this relative
-  /// tolerance of its request, or `max_calibration_solves` full solves were made.
+  /// kLift and kField: bump heights are calibrated until every lens's measured zoom is within
+  /// this relative tolerance of its request, or `max_calibration_solves` full solves were made.
   double zoom_tolerance = 0.02;
   int max_calibration_solves = 12;
 };
@@ -96,15 +96,17 @@ struct LensResult {
 
 /// Magnifies lenses on a width x height image. Holds the grid. solve() is independent of any
 /// earlier call; update() is the interactive path a GUI loop calls every frame: it keeps the
-/// flattener's symbolic factorization, starts from the previous frame's flattening and heights,
-/// and skips subdivision so the mesh topology stays fixed.
+/// flattener (and its symbolic factorization) while the mesh's topology stays, starts a focus
+/// lens from its power-law start and the other models from the previous frame's flattening and
+/// heights, and skips subdivision.
 class GeometricLens {
  public:
   GeometricLens(double width, double height, const LensOptions& options = {});
 
-  /// Finds each lens's bump height so that its measured zoom matches its request (zoom 1 means
-  /// height 0, the identity), and returns the final warp. Throws InvalidInput for an invalid
-  /// lens, SolverError if a system cannot be solved.
+  /// kFocus: magnifies each lens's region by its zoom, or by the largest zoom that fits where it
+  /// is (`zoom_fits`), in one solve. kLift and kField: finds each lens's bump height so that its
+  /// measured zoom matches its request (zoom 1 means height 0, the identity). Returns the final
+  /// warp. Throws InvalidInput for an invalid lens, SolverError if a system cannot be solved.
   LensResult solve(const std::vector<Lens>& lenses) const;
 
   /// Like solve() for lenses that moved or changed since the last update(), reusing what did not
