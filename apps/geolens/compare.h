@@ -22,12 +22,14 @@ struct CompareArgs {
 /// Registers the `compare` subcommand and its options on `app`.
 CLI::App* add_compare_command(CLI::App& app, CompareArgs& args);
 
-/// Solves the geometric lens, matches the six classic lenses to its measured zoom and radius,
+/// Solves the geometric lens, matches the seven classic lenses to its measured zoom (circle lenses
+/// only; against a focus lens, with its footprint as radius and a flat top of its region's size)
 /// and writes into the output folder, per method NAME (geometric, zoom_in, fisheye,
-/// fisheye_smooth, bifocal, flattop_linear, flattop_cosine): NAME.FORMAT (the output) and
-/// NAME_heatmap.FORMAT (its shape distortion with a scale), then panel.FORMAT (every method side
-/// by side around the lenses, labelled), report.json and report.md. Returns the exit code; throws
-/// InvalidInput for bad input before writing anything.
+/// fisheye_smooth, bifocal, flattop_linear, flattop_cosine, power_ring): NAME.FORMAT (the output)
+/// and NAME_heatmap.FORMAT (its shape distortion with a scale), then panel.FORMAT (every method
+/// side by side around the lenses, labelled), report.json and report.md. With --sweep, one lens's
+/// footprint sweep instead (footprint_sweep.h): sweep.json, sweep.md and sweep.FORMAT. Returns
+/// the exit code; throws InvalidInput for bad input before writing anything.
 int run_compare(const CompareArgs& args);
 
 }  // namespace geolens
