@@ -12,6 +12,7 @@
 #include "geolens/grid.h"
 #include "geolens/sparse_solver.h"
 #include "geolens/svd2.h"
+#include "geolens/texture_map.h"
 #include "parallel.h"
 
 namespace geolens {
@@ -312,19 +313,18 @@ inline Eigen::Matrix2d Flattener::target(const Triangle& t, const Eigen::Matrix2
   return U * Eigen::Vector2d(K * s2, s2).asDiagonal() * V;
 }
 
-bool Flattener::admissible(const Eigen::MatrixX2d& X) const {
-  require(X.rows() == rest_.rows(), "Flattener::admissible", "one row per vertex expected");
+bool Flattener::keeps_fixed(const Eigen::MatrixX2d& X, const Eigen::MatrixXd& values) const {
   for (Eigen::Index v = 0; v < X.rows(); ++v) {
-    if ((fix_x_[size_t(v)] && X(v, 0) != rest_(v, 0)) ||
-        (fix_y_[size_t(v)] && X(v, 1) != rest_(v, 1)))
+    if ((fix_x_[size_t(v)] && X(v, 0) != values(v, 0)) ||
+        (fix_y_[size_t(v)] && X(v, 1) != values(v, 1)))
       return false;
   }
-  for (Eigen::Index f = 0; f < F_.rows(); ++f) {
-    const Eigen::Vector2d a = X.row(F_(f, 1)) - X.row(F_(f, 0));
-    const Eigen::Vector2d b = X.row(F_(f, 2)) - X.row(F_(f, 0));
-    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return false;
-  }
   return true;
+}
+
+bool Flattener::admissible(const Eigen::MatrixX2d& X) const {
+  require(X.rows() == rest_.rows(), "Flattener::admissible", "one row per vertex expected");
+  return keeps_fixed(X, rest_) && count_folds(X, F_) == 0;
 }
 
 void Flattener::admit_anisotropy(const Eigen::MatrixX2d& X) {
@@ -443,12 +443,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
       std::max(1e-20 * total_weight, options_.tolerance * options_.tolerance * bounded_weight);
   // A start off its fixed values (a guess that moved a pinned or border vertex) takes at least
   // one global step, which puts them back, however low its energy.
-  bool off_fixed = false;
-  for (size_t v = 0; v < size_t(n) && !off_fixed; ++v) {
-    const Eigen::Index i = Eigen::Index(v);
-    off_fixed = (fix_x_[v] && r.X(i, 0) != fixed_values(i, 0)) ||
-                (fix_y_[v] && r.X(i, 1) != fixed_values(i, 1));
-  }
+  const bool off_fixed = !keeps_fixed(r.X, fixed_values);
   while (r.iterations < options_.max_iterations) {
     if (r.energy.back() <= negligible && !(off_fixed && r.iterations == 0)) {
       r.converged = true;

@@ -1,12 +1,14 @@
 #include "geolens/focus_lens.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
 
 #include "geolens/errors.h"
+#include "geolens/texture_map.h"
 #include "parallel.h"
 
 namespace geolens {
@@ -39,13 +41,12 @@ double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
 struct Ring {
   static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
   Eigen::Vector2d centre, disk_centre;
-  double log_zoom, disk_radius, ratio, near, cell, width, height;
+  double disk_radius, ratio, near, cell, width, height;
   std::vector<double> inner_;  // per bin, or one value for a circle about its centre
 
   Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
        double width_, double height_)
       : disk_centre(group.centre),
-        log_zoom(group.log_zoom),
         disk_radius(group.reach + group.margin),
         ratio(1 + group.margin / group.reach),
         near(band),
@@ -160,6 +161,10 @@ struct Ring {
   }
 };
 
+// The fractions of a log zoom tried, in order, when a ring folds the mesh or its start is not
+// admissible.
+constexpr std::array<double, 5> kZoomFractions = {1.0, 0.8, 0.6, 0.4, 0.2};
+
 // The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
 constexpr double kFitExponent = 0.8;
 
@@ -225,6 +230,12 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
   return groups;
 }
 
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses) {
+  std::vector<double> log_zooms;
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  return focus_groups(lenses, log_zooms);
+}
+
 double radial_distortion_bound(double zoom, double ratio) {
   require(std::isfinite(zoom) && zoom >= 1 && std::isfinite(ratio) && ratio > 1,
           "radial_distortion_bound",
@@ -236,10 +247,8 @@ double radial_distortion_bound(double zoom, double ratio) {
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
                                   double width, double height) {
-  std::vector<double> log_zooms;
-  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   std::vector<double> fits(lenses.size());
-  for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
+  for (const FocusGroup& group : focus_groups(lenses)) {
     const double ratio = Ring(group, lenses, cell, band, width, height).min_ratio();
     for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
   }
@@ -321,14 +330,6 @@ void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const Focu
   });
 }
 
-bool folds(const Eigen::MatrixX2d& X, const Eigen::MatrixX3i& F) {
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector2d a = X.row(F(f, 1)) - X.row(F(f, 0)), b = X.row(F(f, 2)) - X.row(F(f, 0));
-    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
@@ -342,15 +343,14 @@ Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>&
 
 std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                                     double cell, double band, double width, double height) {
-  std::vector<double> log_zooms, zooms(lenses.size(), 1.0);
-  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-  for (const FocusGroup& group : focus_groups(lenses, log_zooms)) {
+  std::vector<double> zooms(lenses.size(), 1.0);
+  for (const FocusGroup& group : focus_groups(lenses)) {
     // The footprints are disjoint, so each group is tried on its own.
     const Ring ring(group, lenses, cell, band, width, height);
-    for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
+    for (const double fraction : kZoomFractions) {
       Eigen::MatrixX2d X = mesh.V;
       apply_ring(X, lenses, group, ring, fraction * group.log_zoom);
-      if (folds(X, mesh.F)) continue;
+      if (count_folds(X, mesh.F) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
     }
@@ -362,7 +362,7 @@ FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
                             double cell, double band, double width, double height) {
   // The full start, else one at lower zooms (the solve then raises them), else the identity.
-  for (const double fraction : {1.0, 0.8, 0.6, 0.4, 0.2}) {
+  for (const double fraction : kZoomFractions) {
     std::vector<FocusGroup> lowered = groups;
     for (FocusGroup& g : lowered) g.log_zoom *= fraction;
     const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height);
@@ -372,10 +372,6 @@ FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
   }
   return flattener.solve(V);
 }
-
-}  // namespace geolens
-
-namespace geolens {
 
 bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {
   return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {

@@ -68,9 +68,7 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     highest[k] = std::max(highest[k], m);
   }
   // Beyond the footprints: outside every focus group's disk (focus_lens.h).
-  std::vector<double> log_zooms;
-  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-  const std::vector<FocusGroup> groups = focus_groups(lenses, log_zooms);
+  const std::vector<FocusGroup> groups = focus_groups(lenses);
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose();
     bool beyond = true;

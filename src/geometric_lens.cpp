@@ -177,9 +177,7 @@ Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) c
   Eigen::AlignedBox2d box;
   if (focus) {
     // Every footprint lies within its group's reach plus margin of the group's centre.
-    std::vector<double> log_zooms;
-    for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-    for (const FocusGroup& g : focus_groups(lenses, log_zooms)) {
+    for (const FocusGroup& g : focus_groups(lenses)) {
       const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.reach + g.margin);
       box.extend(g.centre - half).extend(g.centre + half);
     }
@@ -206,12 +204,9 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
       meshed_along_circles(lenses, cell_size(box, options_.mesh))) {
     // Vertices on every focus circle and footprint edge, so no triangle crosses them.
     std::vector<Ring> rings;
-    std::vector<double> log_zooms;
-    for (const Lens& lens : lenses) {
+    for (const Lens& lens : lenses)
       rings.push_back({lens.region.peak() - box.min(), lens.region.size()});
-      log_zooms.push_back(std::log(lens.zoom));
-    }
-    for (const FocusGroup& g : focus_groups(lenses, log_zooms))
+    for (const FocusGroup& g : focus_groups(lenses))
       rings.push_back({g.centre - box.min(), g.reach + g.margin});
     const PlaneMesh ringed = ringed_grid(box.sizes().x(), box.sizes().y(), options_.mesh, rings);
     patch.V = ringed.V;
@@ -234,12 +229,15 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
   return LensModel::kLift;
 }
 
-std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
-                                        std::vector<double>& fits) const {
+std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::vector<double>& fits,
+                                        Grid& grid, Eigen::AlignedBox2d& box) const {
   fits.clear();
-  if (model_for(lenses) != LensModel::kFocus) return lenses;
+  if (model_for(lenses) != LensModel::kFocus) {
+    grid = base_grid(lenses, box);
+    return lenses;
+  }
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
-  Eigen::AlignedBox2d box = solved_box(lenses);
+  box = solved_box(lenses);
   const double cell = cell_size(box, options_.mesh);
   fits = fitting_zooms(lenses, cell, focus_band(lenses, cell), width_, height_);
   std::vector<Lens> out = lenses;
@@ -252,10 +250,10 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses,
     }
   };
   lower(fits);
-  // Then what the mesh of the clamped lenses can hold without folding.
-  const PlanarMesh mesh = base_grid(out, box);
+  // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding.
+  grid = base_grid(out, box);
   const double out_cell = cell_size(box, options_.mesh);
-  lower(unfolding_zooms(mesh, out, out_cell, focus_band(out, out_cell), width_, height_));
+  lower(unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_));
   return out;
 }
 
@@ -351,10 +349,16 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
 
 LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
                                              const std::vector<double>& heights) const {
-  const auto start = Clock::now();
-  LensResult r;
   Eigen::AlignedBox2d box;
   const Grid grid = base_grid(lenses, box);
+  return solve_on(grid, box, lenses, heights);
+}
+
+LensResult GeometricLens::solve_on(const Grid& grid, const Eigen::AlignedBox2d& box,
+                                   const std::vector<Lens>& lenses,
+                                   const std::vector<double>& heights) const {
+  const auto start = Clock::now();
+  LensResult r;
   const PlanarMesh mesh =
       model_for(lenses) == LensModel::kFocus
           ? PlanarMesh(grid)
@@ -387,12 +391,11 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
 // The interactive path: the base grid (no subdivision, so the topology and the symbolic
 // factorization stay), the flattener refitted numerically, and the previous flattening as the
 // starting point.
-LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
+LensResult GeometricLens::solve_cached(const Grid& grid, const Eigen::AlignedBox2d& box,
+                                       const std::vector<Lens>& lenses,
                                        const std::vector<double>& heights) {
   const auto start = Clock::now();
   LensResult r;
-  Eigen::AlignedBox2d box;
-  const Grid grid = base_grid(lenses, box);
   FocusField focus;
   const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r, focus);
 
@@ -444,15 +447,15 @@ LensResult GeometricLens::solve_cached(const std::vector<Lens>& lenses,
 
 LensResult GeometricLens::solve(const std::vector<Lens>& asked) const {
   std::vector<double> fits;
-  const std::vector<Lens> lenses = fitted(asked, fits);
+  Grid grid;
+  Eigen::AlignedBox2d box;
+  const std::vector<Lens> lenses = fitted(asked, fits, grid, box);
   std::vector<double> h;
   const LensModel model = model_for(lenses);
-  Eigen::AlignedBox2d box;
-  const double cell = base_grid(lenses, box).cell;
   for (const Lens& lens : lenses)
-    h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, cell));
+    h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, grid.cell));
   LensResult r = calibrate(lenses, h, [&](const std::vector<double>& heights) {
-    return solve_with_heights(lenses, heights);
+    return solve_on(grid, box, lenses, heights);
   });
   r.zoom_fits = std::move(fits);
   return r;
@@ -460,19 +463,13 @@ LensResult GeometricLens::solve(const std::vector<Lens>& asked) const {
 
 const LensResult& GeometricLens::update(const std::vector<Lens>& asked) {
   std::vector<double> fits;
-  const std::vector<Lens> lenses = fitted(asked, fits);
+  Grid grid;
+  Eigen::AlignedBox2d box;
+  const std::vector<Lens> lenses = fitted(asked, fits, grid, box);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const LensModel model = model_for(lenses);
-  // The grid's cell, only for a lens that needs a first guess (building the grid is not free).
-  double cell = 0;
-  auto guess = [&](const Lens& lens) {
-    if (cell == 0) {
-      Eigen::AlignedBox2d box;
-      cell = base_grid(lenses, box).cell;
-    }
-    return initial_height(lens, model, cell);
-  };
+  auto guess = [&](const Lens& lens) { return initial_height(lens, model, grid.cell); };
   std::vector<double> h;
   for (size_t k = 0; k < lenses.size(); ++k) {
     const Lens& lens = lenses[k];
@@ -486,8 +483,9 @@ const LensResult& GeometricLens::update(const std::vector<Lens>& asked) {
   Eigen::MatrixX2d before = cache_.flat;
   const Eigen::Vector2d box_before = cache_.box.min();
   if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
-  cache_.result = calibrate(
-      lenses, h, [&](const std::vector<double>& heights) { return solve_cached(lenses, heights); });
+  cache_.result = calibrate(lenses, h, [&](const std::vector<double>& heights) {
+    return solve_cached(grid, box, lenses, heights);
+  });
   cache_.result.zoom_fits = std::move(fits);
   cache_.lenses = lenses;
   cache_.change.resize(0, 2);

@@ -426,12 +426,13 @@ int run_compare(const CompareArgs& a) {
     measure_radius.push_back(std::max(cell, 0.05 * lenses[k].region.size()));
   }
   std::vector<Method> methods;
-  methods.push_back({"geometric", solved.warp, solved.zoom_measured[0], {}, {}});
+  methods.push_back({"geometric", solved.warp, solved.zoom_measured[0], {}, {}, {}});
   for (ClassicLens kind : kClassicLenses) {
     if (!classic) break;
     MatchedClassicLens matched = match_classic_lens(kind, targets, measure_radius, source.width,
                                                     source.height, a.baseline_mesh);
-    methods.push_back({to_string(kind), std::move(matched.warp), matched.zoom_measured[0], {}, {}});
+    methods.push_back(
+        {to_string(kind), std::move(matched.warp), matched.zoom_measured[0], {}, {}, {}});
   }
   double heat_max = a.heat_max;
   for (Method& m : methods) {

@@ -177,6 +177,8 @@ class Flattener {
                 const Eigen::VectorXd& log_scale, const FocusConstraints& focus);
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
   Eigen::Matrix2d target(const Triangle& t, const Eigen::Matrix2d& J) const;
+  // Whether every fixed coordinate of X (#V x 2) has its value in `values` (#V x 2).
+  bool keeps_fixed(const Eigen::MatrixX2d& X, const Eigen::MatrixXd& values) const;
   // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
   Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;

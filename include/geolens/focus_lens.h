@@ -52,6 +52,8 @@ struct FocusGroup {
 };
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
                                      const std::vector<double>& log_zooms);
+/// The same at the lenses' own zooms.
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
 
 /// Per lens, the largest zoom at which its group fits where it is on a width x height image
 /// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the

@@ -127,9 +127,13 @@ class GeometricLens {
   Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
-  // kFocus: the lenses with each zoom lowered to the largest that fits (footprints kept), and
-  // those zooms in `fits`; other models: the lenses as they are.
-  std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits) const;
+  // The lenses to solve, and the grid (over `box`) to solve them on. kFocus: each zoom lowered
+  // to the largest that fits (footprints kept), those zooms in `fits`; other models: the lenses
+  // as they are.
+  std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
+                           Eigen::AlignedBox2d& box) const;
+  LensResult solve_on(const Grid& grid, const Eigen::AlignedBox2d& box,
+                      const std::vector<Lens>& lenses, const std::vector<double>& heights) const;
   FlattenOptions flatten_options(LensModel model) const;
   Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
                           const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
@@ -137,7 +141,8 @@ class GeometricLens {
                           FocusField& focus) const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
-  LensResult solve_cached(const std::vector<Lens>& lenses, const std::vector<double>& heights);
+  LensResult solve_cached(const Grid& grid, const Eigen::AlignedBox2d& box,
+                          const std::vector<Lens>& lenses, const std::vector<double>& heights);
   LensResult calibrate(const std::vector<Lens>& lenses, std::vector<double> heights,
                        const std::function<LensResult(const std::vector<double>&)>& run) const;
 
