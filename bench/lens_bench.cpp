@@ -145,10 +145,13 @@ void BM_UpdateMovedStar(benchmark::State& state) {
   };
   double x = 400;
   lens.update({Lens{star(x), 2.5}});
+  int iterations = 0;
   for (auto _ : state) {
     x = x + 3 > 620 ? 400 : x + 3;
-    benchmark::DoNotOptimize(lens.update({Lens{star(x), 2.5}}));
+    iterations += lens.update({Lens{star(x), 2.5}}).flattening.iterations;
   }
+  state.counters["iterations/update"] =
+      benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
 }
 
 // First placement: a new GeometricLens, nothing cached, calibrated from the first guess.

@@ -25,6 +25,15 @@ Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, do
   return Eigen::Vector2d(std::max(x, 0.0), std::max(y, 0.0));
 }
 
+// min(a, b) rounded where the two are within a quarter of the smaller: C1, never above the
+// minimum, and equal to it elsewhere (the quadratic smooth minimum, with a relative width).
+double smooth_min(double a, double b) {
+  const double width = 0.25 * std::min(a, b);
+  if (!(width > 0) || std::abs(a - b) >= width) return std::min(a, b);  // also for infinities
+  const double h = (width - std::abs(a - b)) / width;
+  return std::min(a, b) - 0.25 * h * h * width;
+}
+
 // The distance from p to the nearest region of `group`, pixels.
 double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
                       const Eigen::Vector2d& p) {
@@ -124,10 +133,11 @@ struct Ring {
   }
 
   // The footprint's edge along u: the focus's extent scaled by the footprint ratio, within the
-  // group's disk, or short of the image border where that is nearer.
-  // A smooth minimum (the 8-norm of the reciprocals) of the last three, so the edge does not
-  // turn sharply at an image corner, where the ring would shear the mesh's triangles until they
-  // fold.
+  // group's disk, or short of the image border where that is nearer. A smooth minimum of the
+  // last three, so the edge does not turn sharply at an image corner, where the ring would shear
+  // the mesh's triangles until they fold; it is the plain minimum where the three differ by a
+  // quarter of the nearest or more, so the footprint of a circle clear of the border is the
+  // group's disk, the circle its mesh follows (GeometricLens::base_grid).
   double edge(const Eigen::Vector2d& u) const {
     const Eigen::Vector2d w = centre - disk_centre;
     const double b = u.dot(w);
@@ -135,11 +145,7 @@ struct Ring {
         -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
     const double outer = std::min(ratio * inner(u), disk);
     const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
-    auto power = [](double x) {
-      const double x2 = x * x, x4 = x2 * x2;
-      return 1 / (x4 * x4);
-    };
-    return 1 / std::pow(power(outer) + power(exits.x()) + power(exits.y()), 1.0 / 8);
+    return smooth_min(outer, smooth_min(exits.x(), exits.y()));
   }
 
   // Where q lies on its ray: at t from the centre, at "radius" s >= t (s = inner where q is in the

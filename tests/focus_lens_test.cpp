@@ -347,9 +347,10 @@ class ForwardMap {
 };
 
 // The picture does not depend on the mesh: a circle's lens on the 100 grid sends every source
-// point where a 4x finer solve sends it within 1.25 px (0.02 px on average). Its grid follows the
-// focus circle and the footprint's edge; without that the focus band alone moved points by 9 px.
-// (The issue asks for 0.5 px: not reached yet, docs/design.md.)
+// point where a 4x finer solve sends it within 0.25 px (0.015 px on average; measured 0.19 and
+// 0.011). Its grid follows the focus circle and the footprint's edge, which is the group's disk
+// where the border is not near (the smooth minimum with the border is the plain one there);
+// with the edge rounded by the border everywhere it was 1.09 px, without the rings 8.9 px.
 TEST(FocusLens, AFinerMeshMovesNoPointFar) {
   const std::vector<Lens> lenses = {Lens{Region::circle({512, 512}, 100), 2.0}};
   LensOptions coarse, fine;
@@ -369,8 +370,8 @@ TEST(FocusLens, AFinerMeshMovesNoPointFar) {
       ++count;
     }
   }
-  EXPECT_LT(worst, 1.25);
-  EXPECT_LT(sum / count, 0.02);
+  EXPECT_LT(worst, 0.25);
+  EXPECT_LT(sum / count, 0.015);
 }
 
 }  // namespace
