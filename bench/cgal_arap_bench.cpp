@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "geolens/flatten.h"
-#include "geolens/grid.h"
-#include "geolens/lift.h"
+#include "geolens/geometry/grid.h"
+#include "geolens/lens/flatten.h"
+#include "geolens/lens/lift.h"
 
 namespace geolens {
 namespace {

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "geolens/flatten.h"
-#include "geolens/geometric_lens.h"
-#include "geolens/grid.h"
-#include "geolens/lift.h"
-#include "geolens/texture_map.h"
+#include "geolens/geometry/grid.h"
+#include "geolens/lens/flatten.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lift.h"
+#include "geolens/lens/texture_map.h"
 
 namespace geolens {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "geolens/image.h"
-#include "geolens/render.h"
-#include "geolens/warp_mesh.h"
+#include "geolens/io/image.h"
+#include "geolens/render/render.h"
+#include "geolens/warp/warp_mesh.h"
 
 namespace {
 

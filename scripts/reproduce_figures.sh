@@ -146,7 +146,7 @@ P("The geometric lens runs with the CLI's defaults (gaussian profile, cotan text
   "paper's flattening weights, sliding border, the paper's 0.1 % stop, a 100 x 100 grid without "
   "adaptive subdivision) unless stated. The "
   "classic lenses are evaluated on a 200 x 200 grid with extra rings at r/2 and r "
-  "(`baselines.h`).\n")
+  "(`classic_lens.h`).\n")
 
 # ---------------------------------------------------------------------------------------------
 P("## Fig. 5: a graph, a map and a page of text\n")
@@ -279,7 +279,7 @@ P("The paper's Table 1 ticks which properties zoom-in, fisheye, bifocal, perspec
   "poly-focal, cube deformation and its lens have. Below, the lenses geolens implements, measured "
   "on `examples/demo.png` (1024 x 1024, lens r = 150 px at the centre). Perspective wall and cube "
   "deformation are not implemented. The properties in the last columns follow from the formulas "
-  "(`baselines.h`) and the code, not from a measurement.\n")
+  "(`classic_lens.h`) and the code, not from a measurement.\n")
 props = {
     "geometric": ("smooth transition (piecewise linear on its mesh)", "circle, polygon, mask (library)",
                   "no"),

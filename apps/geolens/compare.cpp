@@ -12,18 +12,18 @@
 #include <string>
 #include <vector>
 
-#include "geolens/baselines.h"
-#include "geolens/distortion.h"
-#include "geolens/distortion_regions.h"
-#include "geolens/errors.h"
-#include "geolens/file_io.h"
-#include "geolens/focus_lens.h"
-#include "geolens/focus_measure.h"
-#include "geolens/footprint_sweep.h"
-#include "geolens/geometric_lens.h"
-#include "geolens/heatmap.h"
-#include "geolens/image.h"
-#include "geolens/render.h"
+#include "geolens/core/errors.h"
+#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/footprint_sweep.h"
+#include "geolens/io/file_io.h"
+#include "geolens/io/image.h"
+#include "geolens/lens/classic_lens.h"
+#include "geolens/lens/focus_lens.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
+#include "geolens/measure/distortion_regions.h"
+#include "geolens/render/heatmap.h"
+#include "geolens/render/render.h"
 
 namespace geolens {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <iostream>
 
-#include "geolens/errors.h"
-#include "geolens/polygon.h"
+#include "geolens/core/errors.h"
+#include "geolens/geometry/polygon.h"
 
 namespace geolens::cli {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "geolens/geometric_lens.h"
-#include "geolens/image.h"
+#include "geolens/io/image.h"
+#include "geolens/lens/geometric_lens.h"
 
 namespace geolens::cli {
 

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "compare.h"
-#include "geolens/distortion.h"
-#include "geolens/errors.h"
-#include "geolens/file_io.h"
-#include "geolens/geometric_lens.h"
-#include "geolens/image.h"
-#include "geolens/mesh_io.h"
-#include "geolens/render.h"
+#include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+#include "geolens/io/image.h"
+#include "geolens/io/mesh_io.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
+#include "geolens/render/render.h"
 #include "lens_args.h"
 #include "stats.h"
 

@@ -1,7 +1,7 @@
 #include "stats.h"
 
-#include "geolens/focus_lens.h"
-#include "geolens/focus_measure.h"
+#include "geolens/eval/focus_measure.h"
+#include "geolens/lens/focus_lens.h"
 
 namespace geolens::cli {
 

@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "geolens/distortion.h"
-#include "geolens/geometric_lens.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
 
 namespace geolens::cli {
 

@@ -2,7 +2,7 @@
 // The options of the tests written for the lift and field models: LensModel::kAuto, the
 // default before the focus model (lift for circles, field for other regions).
 
-#include "geolens/geometric_lens.h"
+#include "geolens/lens/geometric_lens.h"
 
 namespace geolens::test {
 

@@ -1,0 +1,117 @@
+#pragma once
+// The focus lens (LensModel::kFocus): the region given is magnified as a whole, by a similarity,
+// and the context gives way only within a finite footprint around it (docs/design.md, "Focus
+// lenses").
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "geolens/geometry/grid.h"
+#include "geolens/lens/flatten.h"
+#include "geolens/lens/lift.h"
+
+namespace geolens {
+
+/// The footprint of a lens as a ratio: the footprint is the focus scaled by it about the lens's
+/// centre (along each ray, R = ratio r_f), within the disk of radius ratio x reach.
+/// `lens.footprint`, or 2 zoom if that is 0 (the proportions of a flat-top lens whose flat top
+/// is half its radius, docs/design.md).
+double footprint_ratio(const Lens& lens);
+
+/// Whether the focus lens's grid of cell side `cell` (pixels) follows the lenses: when every lens
+/// is a circle of at least 3 cells, GeometricLens meshes the footprints with vertices on every
+/// focus circle and footprint edge (ringed_grid), so no triangle crosses them.
+bool meshed_along_circles(const std::vector<Lens>& lenses, double cell);
+
+/// How far outside a region a mesh vertex of cell side `cell` still counts as in its focus,
+/// pixels (the "band" of the functions below): sqrt(2) cells on a grid that does not follow the
+/// regions, so that every triangle that meets a region is whole in its focus; a millionth of a
+/// cell on one that does (meshed_along_circles).
+double focus_band(const std::vector<Lens>& lenses, double cell);
+
+/// The least maximum shape distortion s1 / s2 - 1 of any radial lens that magnifies a disk of
+/// radius r_f uniformly by `zoom` and leaves everything beyond R = ratio r_f in place:
+/// 1 / (1 - ln zoom / ln ratio) - 1, reached by the power-law ring rho = R (s / R)^k,
+/// k = 1 - ln zoom / ln ratio (in u = ln s, v = ln rho the ring must lower v - u by ln zoom over
+/// ln ratio, and its distortion is 1 / (dv/du) - 1). Infinite when ratio <= zoom.
+double radial_distortion_bound(double zoom, double ratio);
+
+/// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
+/// magnified together, as one focus: the union of their regions, at the largest of their zooms,
+/// about the centre of their peaks; its reach is the farthest point of any of the regions from
+/// there, its footprint the largest ratio of theirs. A lens alone is a group of one. Footprints
+/// do not overlap: where the disks of radius reach + margin of two groups would, both margins
+/// shrink by the same factor until they touch, so no lens moves another (and a lens with a
+/// near neighbour fits a lower zoom).
+struct FocusGroup {
+  std::vector<size_t> lenses;  ///< the members, indices into the lenses
+  Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
+  double reach = 0;            ///< pixels
+  double margin = 0;           ///< the footprint lies in the disk of radius reach + margin, pixels
+  double log_zoom = 0;         ///< the focus's
+};
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
+                                     const std::vector<double>& log_zooms);
+/// The same at the lenses' own zooms.
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
+
+/// Per lens, the largest zoom at which its group fits where it is on a width x height image
+/// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the
+/// group's centre (the image border where nearer), less two cells for the mesh to bend in, must
+/// lie far enough beyond the focus that the radial bound's distortion stays at most 4,
+/// zoom <= ((edge - 2 cell) / inner)^0.8. A region over an image side is magnified about a point
+/// on that side (so the side stays where it is), which shifts the magnified focus inward.
+std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
+                                  double width, double height);
+
+/// What the focus lens asks of the flattening at the vertices `V` (#V x 2, pixels) of a mesh of
+/// cell side `cell` (pixels) on a width x height image, lens i with log zoom `log_zooms[i]`
+/// (>= 0):
+struct FocusField {
+  std::vector<FocusGroup> groups;  ///< focus_groups of the lenses
+  /// Focus: every vertex within `band` of a region (so every triangle that meets the
+  /// region is whole in its focus), with the index of the nearest group. Pinned: every vertex
+  /// that no group's ring (focus_start) moves, on or beyond every footprint's edge. Anisotropy:
+  /// the radial bound along the vertex's ray from the centre of the group whose ring it is
+  /// deepest in, times `slack`.
+  FocusConstraints constraints;
+  Eigen::VectorXd log_scale;  ///< #V the group's log zoom in its focus, 0 elsewhere
+  Eigen::VectorXd level;      ///< #V 1 where the vertex may move, 0 where pinned
+};
+FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+                       const std::vector<double>& log_zooms, double cell, double band, double width,
+                       double height, double slack = 1.1);
+
+/// A fold-free first flattening for focus_field's constraints: each group's power-law ring,
+/// generalized to any region. About the group's centre c (or a point on the image side its
+/// regions cross), along each ray the focus reaches inner (a smooth envelope of the regions'
+/// extent plus the band) and the footprint's edge lies at R (the focus scaled by the footprint
+/// ratio, within the group's disk, short of the image border where that is nearer); a point at
+/// distance t from c and d from the regions goes to c + g (p - c) with
+/// ln g = log_zoom ln(R / s) / ln(R / inner), s = max(t, inner + max(d - band, 0)). s >= t and
+/// ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle folds (in the
+/// continuum), the focus is magnified exactly, and the image border maps onto itself. For a
+/// circle this is the bound-reaching power ring. The groups are applied one after the other;
+/// their footprints do not overlap. Returns #V x 2, pixels.
+Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+                             const std::vector<FocusGroup>& groups, double cell, double band,
+                             double width, double height);
+
+/// Per lens, the largest zoom of its group (its own, or exp of 0.8, 0.6, 0.4 or 0.2 of its log)
+/// at which the group's ring in focus_start folds no triangle of `mesh` (cell side `cell`,
+/// pixels, on a width x height image), 1 if none: where fitting_zooms's estimate is too much for
+/// the mesh (a ring a few cells wide).
+std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
+                                    double cell, double band, double width, double height);
+
+/// Flattens focus lenses with `flattener` (built on focus_field's constraints and log scales,
+/// Standard::kScaled, kCotan weights) from focus_start, each triangle's anisotropy bound raised
+/// to the start's distortion where that is higher (Flattener::admit_anisotropy: where the rings
+/// of several groups overlap); if the flattener does not admit that start (a fold on the mesh,
+/// a fixed vertex moved), from the start at 0.8, 0.6, 0.4, 0.2 of the log zooms, else from the
+/// identity `V` (#V x 2, pixels).
+FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
+                            double cell, double band, double width, double height);
+
+}  // namespace geolens

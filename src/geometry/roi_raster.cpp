@@ -1,0 +1,202 @@
+// Polygon and mask regions (roi.h): their depth and thickness fields sampled from a DepthRaster.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/geometry/distance_field.h"
+#include "geolens/geometry/polygon.h"
+#include "geolens/geometry/roi.h"
+#include "geolens/io/image.h"
+#include "geometry/roi_impl.h"
+
+namespace geolens {
+namespace {
+
+// A polygon's raster has 1-pixel cells, but at least kMinCells and at most kMaxCells nodes
+// along the long side of its bounding box padded by kPadding outside nodes on every side.
+constexpr int kMaxCells = 1024;
+constexpr int kMinCells = 64;
+constexpr int kPadding = 2;
+// Within kExactCells cells of a polygon's boundary, b is measured on its edges; over the next
+// kExactCells it blends linearly into the raster's b.
+constexpr double kExactCells = 2;
+
+/// The fields of a polygon: a from the raster; b exact near the boundary (so that it is 0 on the
+/// polygon itself, not on the raster's approximation of it) and from the raster deeper inside.
+struct PolygonField {
+  DepthRaster raster;
+  PolygonIndex index;
+  double exact;  // pixels: kExactCells cells
+
+  double boundary_distance(const Eigen::Vector2d& p) const {
+    if (!index.contains(p)) return 0;
+    const double near = index.boundary_distance(p, 2 * exact);
+    if (near <= exact) return near;
+    const double w = (near - exact) / exact;
+    return (1 - w) * near + w * raster.boundary_distance(p);
+  }
+};
+
+}  // namespace
+
+Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
+  validate_polygon(vertices, "Region::polygon");
+  Eigen::AlignedBox2d box;
+  for (const Eigen::Vector2d& v : vertices) box.extend(v);
+  const Eigen::Vector2d extent = box.sizes();
+  const double long_side = extent.maxCoeff();
+  const double cell = std::clamp(1.0, long_side / (kMaxCells - 2 * kPadding),
+                                 long_side / (kMinCells - 2 * kPadding));
+  // Nodes at the centres of cells, the box padded by kPadding - 1/2 cells on every side.
+  const int width = int(std::ceil(extent.x() / cell)) + 2 * kPadding;
+  const int height = int(std::ceil(extent.y() / cell)) + 2 * kPadding;
+  const Eigen::Vector2d origin = box.min().array() - (kPadding - 0.5) * cell;
+  const std::vector<uint8_t> inside = rasterize_polygon(vertices, width, height, origin, cell);
+  require(std::find(inside.begin(), inside.end(), 1) != inside.end(), "Region::polygon",
+          "the polygon is too thin: no node of its raster (cell " + std::to_string(cell) +
+              " px) lies inside it");
+  const double exact = kExactCells * cell;
+  auto field = std::make_shared<const PolygonField>(PolygonField{
+      depth_raster(inside, width, height, origin, cell), PolygonIndex(vertices, 2 * exact), exact});
+
+  auto impl = std::make_shared<Impl>();
+  impl->kind = RegionKind::kPolygon;
+  impl->bounds = box;
+  impl->vertices = vertices;
+  impl->depth = [field](const Eigen::Vector2d& p) {
+    return depth_from_distances(field->raster.axis_distance(p), field->boundary_distance(p));
+  };
+  impl->thickness = [field](const Eigen::Vector2d& p) {
+    return field->raster.axis_distance(p) + field->boundary_distance(p);
+  };
+  impl->peak = field->raster.peak;
+  impl->size = impl->thickness(impl->peak);
+  impl->distance = [field, vertices](const Eigen::Vector2d& p) {
+    if (field->index.contains(p)) return 0.0;
+    // Every edge (the index's bands serve short reaches; this one is unbounded).
+    double d = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < vertices.size(); ++i)
+      d = std::min(d, segment_distance(p, vertices[i], vertices[(i + 1) % vertices.size()]));
+    return d;
+  };
+  for (const Eigen::Vector2d& v : vertices)
+    impl->reach = std::max(impl->reach, (v - impl->peak).norm());
+  return Region(std::move(impl));
+}
+
+std::vector<Region> Region::from_mask(const Image& mask) {
+  require(mask.width > 0 && mask.height > 0 && mask.channels >= 1 &&
+              mask.pixels.size() == size_t(mask.width) * mask.height * mask.channels,
+          "Region::from_mask",
+          "malformed image: " + std::to_string(mask.width) + " x " + std::to_string(mask.height) +
+              " x " + std::to_string(mask.channels) + " with " +
+              std::to_string(mask.pixels.size()) + " bytes");
+  const int w = mask.width, h = mask.height;
+  // 8-connected blobs of non-zero first-channel pixels, labelled in raster order.
+  struct Blob {
+    int x0, y0, x1, y1;  // pixel bounding box, inclusive
+  };
+  std::vector<Blob> blobs;
+  std::vector<int> label(size_t(w) * h, -1);
+  std::vector<int> stack;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!mask.at(x, y)[0] || label[size_t(y) * w + x] >= 0) continue;
+      const int id = int(blobs.size());
+      Blob blob{x, y, x, y};
+      label[size_t(y) * w + x] = id;
+      stack.assign(1, y * w + x);
+      while (!stack.empty()) {
+        const int px = stack.back() % w, py = stack.back() / w;
+        stack.pop_back();
+        blob.x0 = std::min(blob.x0, px);
+        blob.x1 = std::max(blob.x1, px);
+        blob.y0 = std::min(blob.y0, py);
+        blob.y1 = std::max(blob.y1, py);
+        for (int qy = std::max(py - 1, 0); qy <= std::min(py + 1, h - 1); ++qy) {
+          for (int qx = std::max(px - 1, 0); qx <= std::min(px + 1, w - 1); ++qx) {
+            if (!mask.at(qx, qy)[0] || label[size_t(qy) * w + qx] >= 0) continue;
+            label[size_t(qy) * w + qx] = id;
+            stack.push_back(qy * w + qx);
+          }
+        }
+      }
+      blobs.push_back(blob);
+    }
+  }
+  require(!blobs.empty(), "Region::from_mask", "the mask has no non-zero pixel");
+
+  std::vector<Region> regions;
+  for (size_t id = 0; id < blobs.size(); ++id) {
+    const Blob& b = blobs[id];
+    // One node per pixel centre, the blob's box padded by one outside pixel on every side.
+    const int width = b.x1 - b.x0 + 3, height = b.y1 - b.y0 + 3;
+    std::vector<uint8_t> inside(size_t(width) * height, 0);
+    for (int y = b.y0; y <= b.y1; ++y) {
+      for (int x = b.x0; x <= b.x1; ++x) {
+        inside[size_t(y - b.y0 + 1) * width + (x - b.x0 + 1)] =
+            uint8_t(label[size_t(y) * w + x] == int(id));
+      }
+    }
+    const Eigen::Vector2d origin(b.x0 - 0.5, b.y0 - 0.5);
+    auto raster =
+        std::make_shared<const DepthRaster>(depth_raster(inside, width, height, origin, 1.0));
+
+    auto impl = std::make_shared<Impl>();
+    impl->kind = RegionKind::kMask;
+    impl->bounds =
+        Eigen::AlignedBox2d(Eigen::Vector2d(b.x0, b.y0), Eigen::Vector2d(b.x1 + 1, b.y1 + 1));
+    impl->depth = [raster](const Eigen::Vector2d& p) {
+      return depth_from_distances(raster->axis_distance(p), raster->boundary_distance(p));
+    };
+    impl->thickness = [raster](const Eigen::Vector2d& p) {
+      return raster->axis_distance(p) + raster->boundary_distance(p);
+    };
+    impl->peak = raster->peak;
+    impl->size = impl->thickness(impl->peak);
+    // Outside, the distance to the nearest pixel square on the blob's boundary (one with a
+    // 4-neighbour outside the blob), found by a scan over them.
+    auto in_blob = [&](int x, int y) {
+      return x >= 0 && y >= 0 && x < w && y < h && label[size_t(y) * w + x] == int(id);
+    };
+    auto edge = std::make_shared<std::vector<Eigen::Vector2d>>();  // pixel corners (x, y)
+    for (int y = b.y0; y <= b.y1; ++y) {
+      for (int x = b.x0; x <= b.x1; ++x) {
+        if (in_blob(x, y) &&
+            !(in_blob(x - 1, y) && in_blob(x + 1, y) && in_blob(x, y - 1) && in_blob(x, y + 1)))
+          edge->emplace_back(x, y);
+      }
+    }
+    for (const Eigen::Vector2d& e : *edge) {
+      const Eigen::Vector2d far =
+          (impl->peak - e)
+              .cwiseAbs()
+              .cwiseMax((impl->peak - e - Eigen::Vector2d::Ones()).cwiseAbs());
+      impl->reach = std::max(impl->reach, far.norm());
+    }
+    auto pixels = std::make_shared<const std::vector<uint8_t>>(inside);
+    impl->distance = [edge, pixels, width, height, x0 = b.x0 - 1,
+                      y0 = b.y0 - 1](const Eigen::Vector2d& p) {
+      const double px = std::floor(p.x()) - x0, py = std::floor(p.y()) - y0;
+      if (px >= 0 && py >= 0 && px < width && py < height &&
+          (*pixels)[size_t(py) * size_t(width) + size_t(px)])
+        return 0.0;
+      double best = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector2d& e : *edge) {
+        const Eigen::Vector2d d = (e - p).cwiseMax(p - e - Eigen::Vector2d::Ones()).cwiseMax(0.0);
+        best = std::min(best, d.squaredNorm());
+      }
+      return std::sqrt(best);
+    };
+    regions.push_back(Region(std::move(impl)));
+  }
+  return regions;
+}
+
+}  // namespace geolens

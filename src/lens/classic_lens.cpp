@@ -1,0 +1,372 @@
+#include "geolens/lens/classic_lens.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "geolens/core/errors.h"
+#include "geolens/geometry/grid.h"
+#include "geolens/measure/distortion.h"
+
+namespace geolens {
+
+std::string to_string(ClassicLens lens) {
+  switch (lens) {
+    case ClassicLens::kZoomIn:
+      return "zoom_in";
+    case ClassicLens::kFisheye:
+      return "fisheye";
+    case ClassicLens::kFisheyeSmooth:
+      return "fisheye_smooth";
+    case ClassicLens::kBifocal:
+      return "bifocal";
+    case ClassicLens::kFlattopLinear:
+      return "flattop_linear";
+    case ClassicLens::kFlattopCosine:
+      return "flattop_cosine";
+    case ClassicLens::kPowerRing:
+      return "power_ring";
+  }
+  return "zoom_in";
+}
+
+double classic_source_distance(ClassicLens lens, double u, double zoom, double a) {
+  require(std::isfinite(u) && u >= 0, "classic_source_distance",
+          "screen distance must be finite and >= 0, got " + std::to_string(u));
+  require(std::isfinite(zoom) && zoom >= 1, "classic_source_distance",
+          "zoom must be finite and >= 1, got " + std::to_string(zoom));
+  if (u >= 1) return u;
+  require(std::isfinite(a) && a > 0 && a < 1, "classic_source_distance",
+          "focus fraction must be in (0, 1), got " + std::to_string(a));
+  const double d = zoom - 1;
+  switch (lens) {
+    case ClassicLens::kZoomIn:
+      return u / zoom;
+    case ClassicLens::kFisheye:
+      // Sarkar and Brown 1992: G(t) = (d + 1) t / (d t + 1); solving u = G(t) for t.
+      return u / (1 + d * (1 - u));
+    case ClassicLens::kFisheyeSmooth:
+      // The gain 1 + d (1 - u)^2 is z at the centre and falls to 1 at the rim with slope 0, so
+      // T'(1) = 1 (C1 with the identity outside). T is increasing for any decreasing gain M:
+      // T' = (M - u M') / M^2 > 0.
+      return u / (1 + d * (1 - u) * (1 - u));
+    case ClassicLens::kBifocal:
+      // Spence and Apperley 1982: uniform z inside a, one uniform compression from a to 1.
+      if (u <= a) return u / zoom;
+      return a / zoom + (u - a) * (1 - a / zoom) / (1 - a);
+    case ClassicLens::kFlattopLinear: {
+      // Pietriga and Appert 2008: the gain M is z on the flat top and drops linearly to 1.
+      const double gain = u <= a ? zoom : 1 + d * (1 - u) / (1 - a);
+      return u / gain;
+    }
+    case ClassicLens::kFlattopCosine: {
+      // The same with a raised-cosine drop-off: M' = 0 at a and at 1.
+      const double gain =
+          u <= a ? zoom : 1 + d * 0.5 * (1 + std::cos(std::numbers::pi * (u - a) / (1 - a)));
+      return u / gain;
+    }
+    case ClassicLens::kPowerRing: {
+      // In log coordinates the ring is linear: ln u = k ln t between (ln(a / z), ln a) and (0, 0).
+      if (u <= a) return u / zoom;
+      const double k = std::log(1 / a) / std::log(zoom / a);
+      return std::pow(u, 1 / k);
+    }
+  }
+  return u;
+}
+
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+// Twice the signed area of triangle f of (V, F).
+double signed_area2(const std::vector<Eigen::Vector2d>& V, const std::array<int, 3>& f) {
+  return cross(V[size_t(f[1])] - V[size_t(f[0])], V[size_t(f[2])] - V[size_t(f[0])]);
+}
+
+// The point where segment a -> b crosses the circle (c, radius), for a and b on opposite sides:
+// the root in [0, 1] of |a + s (b - a) - c|^2 = radius^2.
+Eigen::Vector2d circle_crossing(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                const Ring& ring) {
+  const Eigen::Vector2d d = b - a, w = a - ring.center;
+  const double A = d.squaredNorm(), B = 2 * w.dot(d),
+               C = w.squaredNorm() - ring.radius * ring.radius;
+  const double root = std::sqrt(std::max(0.0, B * B - 4 * A * C));
+  // a inside (C < 0): the larger root; a outside: the smaller one.
+  const double s = C < 0 ? (-B + root) / (2 * A) : (-B - root) / (2 * A);
+  return a + std::clamp(s, 0.0, 1.0) * d;
+}
+
+// Moves free vertices within `reach` of the ring onto it, unless that would shrink an incident
+// triangle below a fifth of its area; marks them locked.
+void snap_to_ring(std::vector<Eigen::Vector2d>& V, const std::vector<std::array<int, 3>>& F,
+                  std::vector<char>& locked, const Ring& ring, double reach) {
+  std::vector<std::vector<int>> incident(V.size());
+  for (size_t f = 0; f < F.size(); ++f)
+    for (int k : F[f]) incident[size_t(k)].push_back(int(f));
+  for (size_t i = 0; i < V.size(); ++i) {
+    const Eigen::Vector2d offset = V[i] - ring.center;
+    const double distance = offset.norm();
+    if (locked[i] || distance == 0 || std::abs(distance - ring.radius) >= reach) continue;
+    const Eigen::Vector2d old = V[i];
+    std::vector<double> before;
+    for (int f : incident[i]) before.push_back(signed_area2(V, F[size_t(f)]));
+    V[i] = ring.center + offset * (ring.radius / distance);
+    bool keeps_shape = true;
+    for (size_t k = 0; k < incident[i].size(); ++k)
+      keeps_shape = keeps_shape && signed_area2(V, F[size_t(incident[i][k])]) > 0.2 * before[k];
+    if (keeps_shape) {
+      locked[i] = 1;
+    } else {
+      V[i] = old;
+    }
+  }
+}
+
+// Splits every triangle the ring crosses along it; new vertices are locked.
+void split_along_ring(std::vector<Eigen::Vector2d>& V, std::vector<std::array<int, 3>>& F,
+                      std::vector<char>& locked, const Ring& ring) {
+  const double tolerance = 1e-9 * ring.radius;
+  auto side = [&](int i) {
+    const double f = (V[size_t(i)] - ring.center).norm() - ring.radius;
+    return f > tolerance ? 1 : f < -tolerance ? -1 : 0;
+  };
+  std::map<std::pair<int, int>, int> crossing;
+  auto crossing_vertex = [&](int i, int j) {
+    const std::pair<int, int> key = std::minmax(i, j);
+    auto [it, inserted] = crossing.try_emplace(key, int(V.size()));
+    if (inserted) {
+      V.push_back(circle_crossing(V[size_t(key.first)], V[size_t(key.second)], ring));
+      locked.push_back(1);
+    }
+    return it->second;
+  };
+  std::vector<std::array<int, 3>> out;
+  out.reserve(F.size() + F.size() / 8);
+  for (const std::array<int, 3>& t : F) {
+    const std::array<int, 3> s = {side(t[0]), side(t[1]), side(t[2])};
+    const bool crossed = (s[0] < 0 || s[1] < 0 || s[2] < 0) && (s[0] > 0 || s[1] > 0 || s[2] > 0);
+    if (!crossed) {
+      out.push_back(t);
+      continue;
+    }
+    // Rotate so that corner 0 is the one on the ring (one vertex on it) or the one alone on its
+    // side (none on it); rotation keeps the orientation.
+    int first = 0;
+    const int zeros = int(s[0] == 0) + int(s[1] == 0) + int(s[2] == 0);
+    for (int k = 0; k < 3; ++k) {
+      const bool on_ring = s[size_t(k)] == 0;
+      const bool alone =
+          s[size_t(k)] != s[size_t((k + 1) % 3)] && s[size_t(k)] != s[size_t((k + 2) % 3)];
+      if (zeros == 1 ? on_ring : alone) first = k;
+    }
+    const int i0 = t[size_t(first)], i1 = t[size_t((first + 1) % 3)],
+              i2 = t[size_t((first + 2) % 3)];
+    if (zeros == 1) {
+      const int p = crossing_vertex(i1, i2);
+      out.push_back({i0, i1, p});
+      out.push_back({i0, p, i2});
+      continue;
+    }
+    const int p = crossing_vertex(i0, i1), q = crossing_vertex(i0, i2);
+    out.push_back({i0, p, q});
+    // The quad p, i1, i2, q: split along its shorter diagonal.
+    if ((V[size_t(p)] - V[size_t(i2)]).squaredNorm() <=
+        (V[size_t(i1)] - V[size_t(q)]).squaredNorm()) {
+      out.push_back({p, i1, i2});
+      out.push_back({p, i2, q});
+    } else {
+      out.push_back({p, i1, q});
+      out.push_back({i1, i2, q});
+    }
+  }
+  F = std::move(out);
+}
+
+void validate_lenses(const std::vector<CircleLens>& lenses, double width, double height,
+                     const char* function) {
+  require(!lenses.empty(), function, "need at least one lens");
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    const CircleLens& lens = lenses[k];
+    validate(lens, function);
+    require(lens.center.x() >= 0 && lens.center.y() >= 0 && lens.center.x() <= width &&
+                lens.center.y() <= height,
+            function, "lens " + std::to_string(k + 1) + " has its centre outside the image");
+    for (size_t j = 0; j < k; ++j) {
+      require((lens.center - lenses[j].center).norm() >= lens.radius + lenses[j].radius, function,
+              "lenses " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
+                  " overlap; the classic lenses need disjoint disks");
+    }
+  }
+}
+
+std::vector<Ring> lens_rings(const std::vector<CircleLens>& lenses) {
+  std::vector<Ring> rings;
+  for (const CircleLens& lens : lenses) {
+    rings.push_back({lens.center, lens.focus_fraction * lens.radius});
+    rings.push_back({lens.center, lens.radius});
+  }
+  return rings;
+}
+
+// Relative distance from a rim within which a vertex counts as on it (ring vertices are placed
+// on the circle up to rounding).
+constexpr double kOnRim = 1e-9;
+
+// Evaluates the lens on the ringed screen mesh.
+WarpMesh evaluate(ClassicLens kind, const PlaneMesh& mesh, const std::vector<CircleLens>& lenses,
+                  double width, double height) {
+  WarpMesh warp;
+  warp.screen_width = int(std::lround(width));
+  warp.screen_height = int(std::lround(height));
+  const Eigen::Index n = mesh.V.rows();
+  Eigen::MatrixX2d screen = mesh.V, source = mesh.V;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (const CircleLens& lens : lenses) {
+      const Eigen::Vector2d offset = mesh.V.row(i).transpose() - lens.center;
+      const double u = offset.norm() / lens.radius;
+      if (u >= 1 - kOnRim || u == 0) continue;
+      source.row(i) =
+          (lens.center +
+           offset * (classic_source_distance(kind, u, lens.zoom, lens.focus_fraction) / u))
+              .transpose();
+    }
+  }
+  Eigen::MatrixX3i F = mesh.F;
+  if (kind == ClassicLens::kZoomIn) {
+    // The inset's rim vertices get their own copies, showing the source at radius r / z.
+    std::vector<int> copy(size_t(n), -1);
+    std::vector<Eigen::Vector2d> screen_copies, source_copies;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      for (const CircleLens& lens : lenses) {
+        double mean = 0;
+        for (int k = 0; k < 3; ++k)
+          mean += (mesh.V.row(mesh.F(f, k)).transpose() - lens.center).norm() / 3;
+        if (mean >= lens.radius) continue;
+        for (int k = 0; k < 3; ++k) {
+          const int i = mesh.F(f, k);
+          const Eigen::Vector2d offset = mesh.V.row(i).transpose() - lens.center;
+          if (offset.norm() < lens.radius * (1 - kOnRim)) continue;
+          if (copy[size_t(i)] < 0) {
+            copy[size_t(i)] = int(n + Eigen::Index(screen_copies.size()));
+            screen_copies.push_back(mesh.V.row(i).transpose());
+            source_copies.push_back(lens.center + offset / lens.zoom);
+          }
+          F(f, k) = copy[size_t(i)];
+        }
+        break;  // lens disks are disjoint
+      }
+    }
+    screen.conservativeResize(n + Eigen::Index(screen_copies.size()), 2);
+    source.conservativeResize(screen.rows(), 2);
+    for (size_t k = 0; k < screen_copies.size(); ++k) {
+      screen.row(n + Eigen::Index(k)) = screen_copies[k].transpose();
+      source.row(n + Eigen::Index(k)) = source_copies[k].transpose();
+    }
+  }
+  warp.F = std::move(F);
+  warp.screen = std::move(screen);
+  warp.source = std::move(source);
+  return warp;
+}
+
+void require_mesh_size(int vertices_long_side, const char* function) {
+  require(vertices_long_side >= 4 && vertices_long_side <= 1000, function,
+          "mesh must be in [4, 1000] vertices per side, got " + std::to_string(vertices_long_side));
+}
+
+}  // namespace
+
+PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
+                      const std::vector<Ring>& rings) {
+  for (const Ring& ring : rings)
+    require(ring.center.allFinite() && std::isfinite(ring.radius) && ring.radius > 0, "ringed_grid",
+            "ring centre must be finite and radius > 0");
+  const Grid grid = make_grid(width, height, vertices_long_side);
+  std::vector<Eigen::Vector2d> V(size_t(grid.V.rows()));
+  std::vector<char> locked(V.size());
+  for (size_t i = 0; i < V.size(); ++i) {
+    V[i] = grid.V.row(Eigen::Index(i)).transpose();
+    locked[i] = grid.sides[i] != 0;
+  }
+  std::vector<std::array<int, 3>> F(size_t(grid.F.rows()));
+  for (size_t f = 0; f < F.size(); ++f)
+    F[f] = {grid.F(Eigen::Index(f), 0), grid.F(Eigen::Index(f), 1), grid.F(Eigen::Index(f), 2)};
+  for (const Ring& ring : rings) {
+    snap_to_ring(V, F, locked, ring, 0.2 * grid.cell);
+    split_along_ring(V, F, locked, ring);
+  }
+  PlaneMesh mesh;
+  mesh.V.resize(Eigen::Index(V.size()), 2);
+  for (size_t i = 0; i < V.size(); ++i) mesh.V.row(Eigen::Index(i)) = V[i].transpose();
+  mesh.F.resize(Eigen::Index(F.size()), 3);
+  for (size_t f = 0; f < F.size(); ++f) mesh.F.row(Eigen::Index(f)) << F[f][0], F[f][1], F[f][2];
+  return mesh;
+}
+
+WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, double width,
+                      double height, int vertices_long_side) {
+  require_mesh_size(vertices_long_side, "classic_warp");
+  validate_lenses(lenses, width, height, "classic_warp");
+  return evaluate(kind, ringed_grid(width, height, vertices_long_side, lens_rings(lenses)), lenses,
+                  width, height);
+}
+
+MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
+                                      const std::vector<double>& measure_radius, double width,
+                                      double height, int vertices_long_side) {
+  require_mesh_size(vertices_long_side, "match_classic_lens");
+  validate_lenses(targets, width, height, "match_classic_lens");
+  require(measure_radius.size() == targets.size(), "match_classic_lens",
+          "need one measure radius per lens");
+  for (double radius : measure_radius)
+    require(std::isfinite(radius) && radius > 0, "match_classic_lens",
+            "measure radius must be finite and > 0, got " + std::to_string(radius));
+  // The rings do not depend on the zoom, so one mesh serves every build.
+  const PlaneMesh mesh = ringed_grid(width, height, vertices_long_side, lens_rings(targets));
+  const size_t n = targets.size();
+  std::vector<CircleLens> lenses = targets;
+  // Per lens, the previous (log z, log measured - log target) for the secant step.
+  std::vector<double> x_previous(n), f_previous(n);
+  MatchedClassicLens best;
+  double best_miss = std::numeric_limits<double>::infinity();
+  for (int build = 0; build < 20; ++build) {
+    MatchedClassicLens m;
+    m.warp = evaluate(kind, mesh, lenses, width, height);
+    const TriangleDistortion measures = measure_triangles(m.warp);
+    double miss = 0;
+    std::vector<double> f(n);
+    for (size_t k = 0; k < n; ++k) {
+      m.zoom_parameter.push_back(lenses[k].zoom);
+      m.zoom_measured.push_back(
+          magnification_at(m.warp, measures, targets[k].center, measure_radius[k]));
+      f[k] = std::log(m.zoom_measured[k] / targets[k].zoom);
+      miss = std::max(miss, std::abs(f[k]));
+    }
+    if (miss < best_miss) {
+      best_miss = miss;
+      best = std::move(m);
+    }
+    if (miss <= std::log(1.005)) break;
+    for (size_t k = 0; k < n; ++k) {
+      // log(measured) grows about one for one with log(z): start with slope 1, then secant.
+      const double x = std::log(lenses[k].zoom);
+      double slope = 1;
+      if (build > 0 && x != x_previous[k] && f[k] != f_previous[k])
+        slope = std::clamp((f[k] - f_previous[k]) / (x - x_previous[k]), 0.1, 10.0);
+      x_previous[k] = x;
+      f_previous[k] = f[k];
+      lenses[k].zoom = std::exp(std::max(0.0, x - f[k] / slope));
+    }
+  }
+  return best;
+}
+
+}  // namespace geolens

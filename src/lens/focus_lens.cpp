@@ -1,0 +1,392 @@
+#include "geolens/lens/focus_lens.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "core/parallel.h"
+#include "geolens/core/errors.h"
+#include "geolens/lens/texture_map.h"
+
+namespace geolens {
+
+namespace {
+
+// Where the ray from c (in or on the image rectangle) along the unit vector u meets the lines of
+// the image's vertical and of its horizontal sides, pixels (infinite if parallel to them).
+Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, double width,
+                          double height) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double x = u.x() > 0 ? (width - c.x()) / u.x() : u.x() < 0 ? -c.x() / u.x() : inf;
+  const double y = u.y() > 0 ? (height - c.y()) / u.y() : u.y() < 0 ? -c.y() / u.y() : inf;
+  return Eigen::Vector2d(std::max(x, 0.0), std::max(y, 0.0));
+}
+
+// min(a, b) rounded where the two are within a quarter of the smaller: C1, never above the
+// minimum, and equal to it elsewhere (the quadratic smooth minimum, with a relative width).
+double smooth_min(double a, double b) {
+  const double width = 0.25 * std::min(a, b);
+  if (!(width > 0) || std::abs(a - b) >= width) return std::min(a, b);  // also for infinities
+  const double h = (width - std::abs(a - b)) / width;
+  return std::min(a, b) - 0.25 * h * h * width;
+}
+
+// The distance from p to the nearest region of `group`, pixels.
+double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
+                      const Eigen::Vector2d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t k : group.lenses) d = std::min(d, lenses[k].region.distance(p));
+  return d;
+}
+
+// One focus group's ring about `centre` (the group's, or a point on the image side its regions
+// cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
+// smooth envelope of the farthest point within `near` of a region) and the footprint's edge
+// lies at edge(u): the focus scaled by the footprint ratio, inside the group's disk, and short
+// of the image border where that is nearer.
+struct Ring {
+  static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
+  Eigen::Vector2d centre, disk_centre;
+  double disk_radius, ratio, near, cell, width, height;
+  std::vector<double> inner_;  // per bin, or one value for a circle about its centre
+
+  Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
+       double width_, double height_)
+      : disk_centre(group.centre),
+        disk_radius(group.reach + group.margin),
+        ratio(1 + group.margin / group.reach),
+        near(band),
+        cell(cell_),
+        width(width_),
+        height(height_) {
+    // A region over an image side is magnified about a point on that side, so the side stays.
+    Eigen::AlignedBox2d b;
+    for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
+    Eigen::Vector2d c = group.centre;
+    if (b.min().x() <= 0) c.x() = 0;
+    if (b.max().x() >= width) c.x() = width;
+    if (b.min().y() <= 0) c.y() = 0;
+    if (b.max().y() >= height) c.y() = height;
+    place_at(c, group, lenses);
+  }
+
+  // The smallest ratio, over the rays into the image, of the footprint's edge (less two cells,
+  // for the mesh to bend in) to the focus's extent.
+  double min_ratio() const {
+    double r = std::numeric_limits<double>::infinity();
+    constexpr int kRays = 720;
+    for (int k = 0; k < kRays; ++k) {
+      const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      if (ray_exits(centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
+      r = std::min(r, (edge(u) - 2 * cell) / inner(u));
+    }
+    return r;
+  }
+
+  // Puts the centre at c and finds the focus's extent along every ray from it.
+  void place_at(const Eigen::Vector2d& c, const FocusGroup& group,
+                const std::vector<Lens>& lenses) {
+    centre = c;
+    const double reach = group.reach + (centre - group.centre).norm() + near;
+    if (group.lenses.size() == 1 && centre == group.centre &&
+        lenses[group.lenses[0]].region.kind() == RegionKind::kCircle) {
+      inner_.assign(1, reach);
+      return;
+    }
+    // Along each ray, from the reach inwards in half-cell steps to the first point within
+    // `near` of a region, plus a step and `near` (the vertices of the focus between two rays).
+    const double step = 0.5 * cell;
+    std::vector<double> found(kBins);
+    for (int k = 0; k < kBins; ++k) {
+      const double a = 2 * std::numbers::pi * k / kBins;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      double t = reach;
+      while (t > 0 && group_distance(group, lenses, centre + t * u) > near) t -= step;
+      found[size_t(k)] = std::min(std::max(t, 0.0) + step + near, reach);
+    }
+    // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
+    // from ray to ray that the ring does not shear the mesh's triangles until they fold.
+    constexpr double kSlope = 0.3;
+    std::vector<double> decay(kBins / 2 + 1);  // by the number of bins between two rays
+    for (size_t k = 0; k < decay.size(); ++k)
+      decay[k] = std::exp(-kSlope * 2 * std::numbers::pi * double(k) / kBins);
+    inner_.assign(kBins, 0.0);
+    for (int k = 0; k < kBins; ++k) {
+      for (int j = 0; j < kBins; ++j) {
+        const int steps = std::min(std::abs(k - j), kBins - std::abs(k - j));
+        inner_[size_t(k)] = std::max(inner_[size_t(k)], found[size_t(j)] * decay[size_t(steps)]);
+      }
+    }
+  }
+
+  double inner(const Eigen::Vector2d& u) const {
+    if (inner_.size() == 1) return inner_[0];
+    double a = std::atan2(u.y(), u.x()) / (2 * std::numbers::pi) * kBins;
+    if (a < 0) a += kBins;
+    const int k = std::min(int(a), kBins - 1);
+    const double w = a - k;
+    return (1 - w) * inner_[size_t(k)] + w * inner_[size_t((k + 1) % kBins)];
+  }
+
+  // The footprint's edge along u: the focus's extent scaled by the footprint ratio, within the
+  // group's disk, or short of the image border where that is nearer. A smooth minimum of the
+  // last three, so the edge does not turn sharply at an image corner, where the ring would shear
+  // the mesh's triangles until they fold; it is the plain minimum where the three differ by a
+  // quarter of the nearest or more, so the footprint of a circle clear of the border is the
+  // group's disk, the circle its mesh follows (GeometricLens::base_grid).
+  double edge(const Eigen::Vector2d& u) const {
+    const Eigen::Vector2d w = centre - disk_centre;
+    const double b = u.dot(w);
+    const double disk =
+        -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
+    const double outer = std::min(ratio * inner(u), disk);
+    const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
+    return smooth_min(outer, smooth_min(exits.x(), exits.y()));
+  }
+
+  // Where q lies on its ray: at t from the centre, at "radius" s >= t (s = inner where q is in the
+  // focus, growing by at most 1 per unit of t), between inner and edge inside the ring.
+  struct Place {
+    Eigen::Vector2d u = Eigen::Vector2d::Zero();
+    double t = 0, s = 0, inner = 0, edge = 0;
+    bool in_footprint() const { return s < edge * (1 - 1e-12); }
+  };
+  Place place(const Eigen::Vector2d& q, const FocusGroup& group,
+              const std::vector<Lens>& lenses) const {
+    Place p;
+    p.t = (q - centre).norm();
+    p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
+    p.inner = inner(p.u);
+    p.edge = edge(p.u);
+    p.s = std::max(p.t, p.inner + std::max(group_distance(group, lenses, q) - near, 0.0));
+    return p;
+  }
+};
+
+// The fractions of a log zoom tried, in order, when a ring folds the mesh or its start is not
+// admissible.
+constexpr std::array<double, 5> kZoomFractions = {1.0, 0.8, 0.6, 0.4, 0.2};
+
+// The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
+constexpr double kFitExponent = 0.8;
+
+}  // namespace
+
+double footprint_ratio(const Lens& lens) {
+  return lens.footprint > 0 ? lens.footprint : 2 * lens.zoom;
+}
+
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
+                                     const std::vector<double>& log_zooms) {
+  require(log_zooms.size() == lenses.size(), "focus_groups", "one log zoom per lens expected");
+  const size_t n = lenses.size();
+  // Union-find over the pairs whose magnified foci (disks of zoom x reach) overlap.
+  std::vector<size_t> root(n);
+  for (size_t k = 0; k < n; ++k) root[k] = k;
+  auto find = [&](size_t k) {
+    while (root[k] != k) k = root[k] = root[root[k]];
+    return k;
+  };
+  auto magnified = [&](size_t k) { return std::exp(log_zooms[k]) * lenses[k].region.reach(); };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      if ((lenses[i].region.peak() - lenses[j].region.peak()).norm() < magnified(i) + magnified(j))
+        root[find(i)] = find(j);
+  std::vector<FocusGroup> groups;
+  std::vector<int> index(n, -1);
+  for (size_t k = 0; k < n; ++k) {
+    int& g = index[find(k)];
+    if (g < 0) {
+      g = int(groups.size());
+      groups.emplace_back();
+    }
+    groups[size_t(g)].lenses.push_back(k);
+  }
+  for (FocusGroup& g : groups) {
+    Eigen::AlignedBox2d peaks;
+    double ratio = 0;
+    for (size_t k : g.lenses) {
+      peaks.extend(lenses[k].region.peak());
+      ratio = std::max(ratio, footprint_ratio(lenses[k]));
+      g.log_zoom = std::max(g.log_zoom, log_zooms[k]);
+    }
+    g.centre = g.lenses.size() == 1 ? lenses[g.lenses[0]].region.peak() : peaks.center();
+    for (size_t k : g.lenses)
+      g.reach =
+          std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
+    g.margin = (ratio - 1) * g.reach;
+  }
+  // Footprints stop where they would meet a neighbour's: where the disks of radius reach +
+  // margin of two groups overlap, both margins shrink by the same factor until the disks touch
+  // (their foci do not overlap, so there is room), and no lens pushes another.
+  for (size_t i = 0; i < groups.size(); ++i) {
+    for (size_t j = i + 1; j < groups.size(); ++j) {
+      FocusGroup &a = groups[i], &b = groups[j];
+      const double room = (a.centre - b.centre).norm() - a.reach - b.reach;
+      if (a.margin + b.margin <= std::max(room, 0.0)) continue;
+      const double scale = std::max(room, 0.0) / (a.margin + b.margin);
+      a.margin *= scale;
+      b.margin *= scale;
+    }
+  }
+  return groups;
+}
+
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses) {
+  std::vector<double> log_zooms;
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  return focus_groups(lenses, log_zooms);
+}
+
+double radial_distortion_bound(double zoom, double ratio) {
+  require(std::isfinite(zoom) && zoom >= 1 && std::isfinite(ratio) && ratio > 1,
+          "radial_distortion_bound",
+          "need zoom >= 1 and ratio > 1, got " + std::to_string(zoom) + " and " +
+              std::to_string(ratio));
+  const double k = 1 - std::log(zoom) / std::log(ratio);
+  return k > 0 ? 1 / k - 1 : std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
+                                  double width, double height) {
+  std::vector<double> fits(lenses.size());
+  for (const FocusGroup& group : focus_groups(lenses)) {
+    const double ratio = Ring(group, lenses, cell, band, width, height).min_ratio();
+    for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
+  }
+  return fits;
+}
+
+FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+                       const std::vector<double>& log_zooms, double cell, double band, double width,
+                       double height, double slack) {
+  require(log_zooms.size() == lenses.size(), "focus_field", "one log zoom per lens expected");
+  require(std::isfinite(cell) && cell > 0 && std::isfinite(band) && band >= 0 &&
+              std::isfinite(slack) && slack >= 1,
+          "focus_field", "cell must be > 0, band >= 0 and slack >= 1");
+  for (double z : log_zooms)
+    require(std::isfinite(z) && z >= 0, "focus_field",
+            "log zoom must be finite and >= 0, got " + std::to_string(z));
+  const Eigen::Index n = V.rows();
+  FocusField out;
+  out.groups = focus_groups(lenses, log_zooms);
+  std::vector<Ring> rings;
+  for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, band, width, height);
+  FocusConstraints& c = out.constraints;
+  c.focus.assign(size_t(n), -1);
+  c.pinned.assign(size_t(n), 1);
+  c.anisotropy = Eigen::VectorXd::Ones(n);
+  out.log_scale = Eigen::VectorXd::Zero(n);
+  out.level = Eigen::VectorXd::Zero(n);
+  parallel_for(size_t(n), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
+      // The nearest focus, and the ring p is deepest in (smallest s over edge).
+      double nearest = std::numeric_limits<double>::infinity(), deepest = 1;
+      int closest = -1;
+      size_t owner = 0;
+      Ring::Place owner_place;
+      for (size_t g = 0; g < out.groups.size(); ++g) {
+        const double d = group_distance(out.groups[g], lenses, p);
+        if (d < nearest) nearest = d, closest = int(g);
+        const Ring::Place place = rings[g].place(p, out.groups[g], lenses);
+        if (place.in_footprint() && place.s / place.edge < deepest) {
+          deepest = place.s / place.edge;
+          owner = g;
+          owner_place = place;
+        }
+      }
+      c.pinned[i] = deepest == 1;
+      if (nearest <= band) {
+        c.focus[i] = closest;
+        out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
+      }
+      if (!c.pinned[i]) {
+        // The radial bound along this vertex's ray of its ring, with the slack; a ray too short
+        // for the zoom has no radial solution: the bound then only keeps the context from
+        // folding over itself (at most 20, a sliver).
+        const double ratio = std::max(owner_place.edge / owner_place.inner, 1.0 + 1e-9);
+        const double k_power = 1 - out.groups[owner].log_zoom / std::log(ratio);
+        c.anisotropy(Eigen::Index(i)) = std::min(slack / std::max(k_power, 1e-9), 20.0);
+      }
+      out.level(Eigen::Index(i)) = c.pinned[i] ? 0.0 : 1.0;
+    }
+  });
+  return out;
+}
+
+namespace {
+
+// Moves the rows of X (pixels) by `group`'s power-law ring (see focus_start) at `log_zoom`.
+void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const FocusGroup& group,
+                const Ring& ring, double log_zoom) {
+  if (log_zoom <= 0) return;
+  parallel_for(size_t(X.rows()), [&](size_t begin, size_t end) {
+    for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+      const Ring::Place p = ring.place(X.row(i).transpose(), group, lenses);
+      // s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge > zoom inner.
+      if (p.t == 0 || !p.in_footprint()) continue;
+      const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
+      X.row(i) = (ring.centre + g * p.t * p.u).transpose();
+    }
+  });
+}
+
+}  // namespace
+
+Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+                             const std::vector<FocusGroup>& groups, double cell, double band,
+                             double width, double height) {
+  Eigen::MatrixX2d X = V;
+  for (const FocusGroup& group : groups)
+    apply_ring(X, lenses, group, Ring(group, lenses, cell, band, width, height), group.log_zoom);
+  return X;
+}
+
+std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
+                                    double cell, double band, double width, double height) {
+  std::vector<double> zooms(lenses.size(), 1.0);
+  for (const FocusGroup& group : focus_groups(lenses)) {
+    // The footprints are disjoint, so each group is tried on its own.
+    const Ring ring(group, lenses, cell, band, width, height);
+    for (const double fraction : kZoomFractions) {
+      Eigen::MatrixX2d X = mesh.V;
+      apply_ring(X, lenses, group, ring, fraction * group.log_zoom);
+      if (count_folds(X, mesh.F) > 0) continue;
+      for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
+      break;
+    }
+  }
+  return zooms;
+}
+
+FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
+                            double cell, double band, double width, double height) {
+  // The full start, else one at lower zooms (the solve then raises them), else the identity.
+  for (const double fraction : kZoomFractions) {
+    std::vector<FocusGroup> lowered = groups;
+    for (FocusGroup& g : lowered) g.log_zoom *= fraction;
+    const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height);
+    if (!flattener.admissible(start)) continue;
+    flattener.admit_anisotropy(start);
+    return flattener.solve(start);
+  }
+  return flattener.solve(V);
+}
+
+bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {
+  return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {
+    return lens.region.kind() == RegionKind::kCircle && lens.region.size() >= 3 * cell;
+  });
+}
+
+double focus_band(const std::vector<Lens>& lenses, double cell) {
+  return meshed_along_circles(lenses, cell) ? 1e-6 * cell : std::numbers::sqrt2 * cell;
+}
+
+}  // namespace geolens

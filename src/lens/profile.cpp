@@ -1,0 +1,52 @@
+#include "geolens/lens/profile.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geolens/core/errors.h"
+
+namespace geolens {
+
+namespace {
+constexpr double kSigma = 0.4;
+}
+
+double profile_value(Profile profile, double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  const double s = 1.0 - t;
+  switch (profile) {
+    case Profile::kGaussian: {
+      const double floor = std::exp(-1.0 / (kSigma * kSigma));
+      return (std::exp(-s * s / (kSigma * kSigma)) - floor) / (1.0 - floor);
+    }
+    case Profile::kSphere:
+      return std::sqrt(std::max(0.0, 1.0 - s * s));
+    case Profile::kMesa: {
+      const double u = std::min(1.0, 2.0 * t);
+      return u * u * (3.0 - 2.0 * u);
+    }
+  }
+  return 0.0;
+}
+
+Profile parse_profile(const std::string& name) {
+  if (name == "gaussian") return Profile::kGaussian;
+  if (name == "sphere") return Profile::kSphere;
+  if (name == "mesa") return Profile::kMesa;
+  throw InvalidInput("parse_profile: unknown profile '" + name +
+                     "' (expected gaussian, sphere or mesa)");
+}
+
+std::string to_string(Profile profile) {
+  switch (profile) {
+    case Profile::kGaussian:
+      return "gaussian";
+    case Profile::kSphere:
+      return "sphere";
+    case Profile::kMesa:
+      return "mesa";
+  }
+  return "?";
+}
+
+}  // namespace geolens

@@ -1,0 +1,130 @@
+#include "geolens/lens/texture_map.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geolens/core/errors.h"
+
+namespace geolens {
+
+TextureWeights parse_texture_weights(const std::string& name) {
+  if (name == "mvc") return TextureWeights::kMeanValue;
+  if (name == "cotan") return TextureWeights::kCotan;
+  if (name == "cotan+") return TextureWeights::kPositiveCotan;
+  throw InvalidInput("parse_texture_weights: unknown texture weights '" + name +
+                     "' (expected cotan, cotan+ or mvc)");
+}
+
+std::string to_string(TextureWeights weights) {
+  switch (weights) {
+    case TextureWeights::kMeanValue:
+      return "mvc";
+    case TextureWeights::kCotan:
+      return "cotan";
+    case TextureWeights::kPositiveCotan:
+      return "cotan+";
+  }
+  return "?";
+}
+
+int count_folds(const Eigen::MatrixX2d& uv, const Eigen::MatrixX3i& F) {
+  int folds = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector2d a = uv.row(F(f, 0)), b = uv.row(F(f, 1)), c = uv.row(F(f, 2));
+    folds += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0;
+  }
+  return folds;
+}
+
+Eigen::SparseMatrix<double> harmonic_weights(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                             TextureWeights weights) {
+  std::vector<Eigen::Triplet<double>> w;
+  w.reserve(size_t(F.rows()) * 6);
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      // Corner i with the other two vertices j, l of the triangle.
+      const int i = F(t, k), j = F(t, (k + 1) % 3), l = F(t, (k + 2) % 3);
+      const Eigen::Vector3d a = V3.row(j) - V3.row(i), b = V3.row(l) - V3.row(i);
+      const double la = a.norm(), lb = b.norm();
+      const double cos_angle = a.dot(b), sin_angle = a.cross(b).norm();
+      if (weights != TextureWeights::kMeanValue) {
+        // cot of the angle at i weighs the opposite edge (j, l), half per triangle.
+        double c = 0.5 * cos_angle / sin_angle;
+        if (weights == TextureWeights::kPositiveCotan) c = std::max(0.0, c);
+        w.emplace_back(j, l, c);
+        w.emplace_back(l, j, c);
+      } else {
+        // tan(angle / 2) = sin / (1 + cos) with unit vectors; weighs edges (i, j) and (i, l).
+        const double tan_half = sin_angle / (la * lb + cos_angle);
+        w.emplace_back(i, j, tan_half / la);
+        w.emplace_back(i, l, tan_half / lb);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> W(V3.rows(), V3.rows());
+  W.setFromTriplets(w.begin(), w.end());
+  return W;
+}
+
+Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
+                                  const std::vector<char>& fixed, const Eigen::MatrixX2d& uv,
+                                  TextureWeights weights) {
+  require(uv.rows() == V3.rows() && fixed.size() == size_t(V3.rows()), "harmonic_texture",
+          "uv and fixed flags must have one row per vertex");
+  std::vector<int> free_index(fixed.size(), -1);
+  int free_count = 0;
+  for (size_t i = 0; i < fixed.size(); ++i)
+    if (!fixed[i]) free_index[i] = free_count++;
+  Eigen::MatrixX2d out = uv;
+  if (free_count == 0) return out;
+  // Only the rows of free vertices matter: weigh the triangles that touch one.
+  std::vector<Eigen::Index> touching;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    if (!fixed[size_t(F(f, 0))] || !fixed[size_t(F(f, 1))] || !fixed[size_t(F(f, 2))])
+      touching.push_back(f);
+  const Eigen::SparseMatrix<double> W = harmonic_weights(V3, F(touching, Eigen::all), weights);
+  // Free row i: sum_j w_ij (u_i - u_j) = 0, the fixed u_j moved to the right-hand side; the
+  // system has one unknown per free vertex only.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(size_t(W.nonZeros()) * 2);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(free_count, 2);
+  for (int j = 0; j < W.outerSize(); ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(W, j); it; ++it) {
+      const int i = free_index[size_t(it.row())];
+      if (i < 0) continue;
+      entries.emplace_back(i, i, it.value());
+      if (free_index[size_t(j)] >= 0) {
+        entries.emplace_back(i, free_index[size_t(j)], -it.value());
+      } else {
+        rhs.row(i) += it.value() * uv.row(j);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> A(free_count, free_count);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::MatrixXd u;
+  if (weights != TextureWeights::kMeanValue) {  // symmetric positive definite
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(A);
+    if (llt.info() != Eigen::Success)
+      throw SolverError("harmonic_texture: Cholesky factorization failed on " +
+                        std::to_string(free_count) + " unknowns (not positive definite)");
+    u = llt.solve(rhs);
+  } else {  // mean value weights are not symmetric
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    lu.compute(A);
+    if (lu.info() != Eigen::Success)
+      throw SolverError("harmonic_texture: LU factorization failed on " +
+                        std::to_string(free_count) + " unknowns (singular)");
+    u = lu.solve(rhs);
+  }
+  for (size_t i = 0; i < fixed.size(); ++i)
+    if (free_index[i] >= 0) out.row(Eigen::Index(i)) = u.row(free_index[i]);
+  return out;
+}
+
+}  // namespace geolens

@@ -1,0 +1,551 @@
+#include "geolens/render/render.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+#include "geolens/core/errors.h"
+
+namespace geolens {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Sampling
+
+/// Calls f(std::integral_constant<int, channels>{}), so that per-pixel loops are compiled for
+/// each channel count.
+template <class F>
+void with_channels(int channels, F&& f) {
+  switch (channels) {
+    case 1:
+      f(std::integral_constant<int, 1>{});
+      break;
+    case 2:
+      f(std::integral_constant<int, 2>{});
+      break;
+    case 3:
+      f(std::integral_constant<int, 3>{});
+      break;
+    default:
+      f(std::integral_constant<int, 4>{});
+      break;
+  }
+}
+
+/// Adds `weight` times the bilinear sample of `level` at texel coordinates (u, v) (texel
+/// centres at integers) to acc[0..C), clamping to the edge.
+template <int C>
+void add_bilinear(const Image& level, double u, double v, float weight, float* acc) {
+  // Clamp so that the integer parts are in [-1, size - 1]; written so that NaN clamps too.
+  const double u_max = level.width - 1, v_max = level.height - 1;
+  if (!(u >= -1.0)) u = -1.0;
+  if (!(u <= u_max)) u = u_max;
+  if (!(v >= -1.0)) v = -1.0;
+  if (!(v <= v_max)) v = v_max;
+  const double u_floor = std::floor(u), v_floor = std::floor(v);
+  const int x = int(u_floor), y = int(v_floor);
+  const float fx = float(u - u_floor), fy = float(v - v_floor);
+  const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.width - 1);
+  const int y0 = std::max(y, 0), y1 = std::min(y + 1, level.height - 1);
+  const uint8_t* row0 = level.pixels.data() + size_t(y0) * size_t(level.width) * C;
+  const uint8_t* row1 = level.pixels.data() + size_t(y1) * size_t(level.width) * C;
+  const uint8_t* a = row0 + x0 * C;
+  const uint8_t* b = row0 + x1 * C;
+  const uint8_t* c = row1 + x0 * C;
+  const uint8_t* d = row1 + x1 * C;
+  for (int k = 0; k < C; ++k) {
+    const float top = float(a[k]) + fx * float(int(b[k]) - int(a[k]));
+    const float bottom = float(c[k]) + fx * float(int(d[k]) - int(c[k]));
+    acc[k] += weight * (top + fy * (bottom - top));
+  }
+}
+
+/// The next mip level of `fine`: half the size rounded up, each texel the mean of a 2x2 block
+/// (the edge texel repeated on odd sides). Rounding alternates in a checkerboard so that the
+/// coarse levels do not drift brighter.
+Image downsample(const Image& fine) {
+  Image coarse((fine.width + 1) / 2, (fine.height + 1) / 2, fine.channels);
+  with_channels(fine.channels, [&](auto channels) {
+    constexpr int C = decltype(channels)::value;
+    const size_t fine_stride = size_t(fine.width) * C;
+    for (int y = 0; y < coarse.height; ++y) {
+      const uint8_t* row0 = fine.pixels.data() + size_t(2 * y) * fine_stride;
+      const uint8_t* row1 =
+          fine.pixels.data() + size_t(std::min(2 * y + 1, fine.height - 1)) * fine_stride;
+      uint8_t* out = coarse.at(0, y);
+      for (int x = 0; x < coarse.width; ++x) {
+        const int x0 = 2 * x * C, x1 = std::min(2 * x + 1, fine.width - 1) * C;
+        const int bias = 1 + ((x ^ y) & 1);
+        for (int k = 0; k < C; ++k)
+          out[x * C + k] =
+              uint8_t((row0[x0 + k] + row0[x1 + k] + row1[x0 + k] + row1[x1 + k] + bias) >> 2);
+      }
+    }
+  });
+  return coarse;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Threads
+
+/// Runs work(i) for i in [0, count) on up to `threads` threads (the caller's included), handing
+/// out indices in order. `work` must not throw.
+template <class Work>
+void parallel_for(int count, int threads, const Work& work) {
+  threads = std::min(threads, count);
+  if (threads <= 1) {
+    for (int i = 0; i < count; ++i) work(i);
+    return;
+  }
+  std::atomic<int> next{0};
+  auto worker = [&] {
+    for (int i = next++; i < count; i = next++) work(i);
+  };
+  std::vector<std::jthread> pool;  // joined on destruction, also when a later spawn throws
+  pool.reserve(size_t(threads - 1));
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rasterization
+//
+// Coverage is decided exactly: vertices are snapped to 1/256 output pixel and the edge functions
+// evaluated in 64-bit integers, with a tie rule (a pixel centre exactly on an edge belongs to the
+// triangle whose inward edge normal n has n.x > 0, or n.x == 0 and n.y > 0) that gives a pixel on
+// an edge shared by two triangles to exactly one of them. So a mesh draws every covered pixel
+// once: no cracks, no double hits. Triangles reaching beyond kGuard pixels are clipped to that
+// square first, which keeps the integer products below 2^62.
+
+constexpr int kSubpixelBits = 8;
+constexpr int64_t kSubpixel = int64_t(1) << kSubpixelBits;
+constexpr double kGuard = 1 << 21;       ///< output pixels
+constexpr int kMaxOutputSide = 1 << 20;  ///< output pixels, keeps the viewport inside the guard
+constexpr double kMaxCoordinate = 1e12;  ///< output pixels, keeps clipping arithmetic finite
+constexpr double kMinArea = 1e-10;       ///< twice the area, squared output pixels
+
+/// Affine map from an output pixel index (px, py) to texel coordinates (u, v) of one mip level.
+struct TexelMap {
+  double u_x, u_y, u_0;
+  double v_x, v_y, v_0;
+};
+
+/// What a triangle needs for drawing, computed once per render.
+struct Triangle {
+  double x[3] = {}, y[3] = {};     ///< screen vertices scaled to output pixels
+  int row_begin = 0, row_end = 0;  ///< output rows it may touch; empty when culled or degenerate
+  int level = 0;                   ///< finer mip level sampled
+  int blend = 0;                   ///< weight of level + 1 in 256ths; 0 samples `level` alone
+  TexelMap map[2] = {};            ///< for `level` and `level + 1`
+};
+
+struct Target {
+  uint8_t* pixels;
+  int width;
+};
+
+int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  int64_t q = a / b;
+  if (a % b < 0) --q;
+  return q;
+}
+
+/// Tracks, row by row, the pixel range one edge allows: px <= bound (upper), px >= bound
+/// (lower), or all / none for a horizontal edge. The bound floor(value / divisor) is stepped
+/// exactly with a quotient and a remainder.
+struct EdgeWalker {
+  enum Kind { kUpper, kLower, kHorizontal } kind;
+  int64_t quotient, remainder, divisor, quotient_step, remainder_step;
+
+  /// Edge from (x0, y0) to (x1, y1) of a positively oriented triangle (fixed point), set up at
+  /// the centre of row `row`.
+  EdgeWalker(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int row) {
+    const int64_t dx = x1 - x0, dy = y1 - y0;
+    // Inside: E = dx * (Y - y0) - dy * (X - x0) >= 0, or > 0 unless the tie rule picks this edge.
+    const int64_t tie = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+    const int64_t centre_y = int64_t(row) * kSubpixel + kSubpixel / 2;
+    // E at pixel px of the row = value - dy * kSubpixel * px.
+    const int64_t value = dx * (centre_y - y0) - dy * (kSubpixel / 2 - x0) + tie;
+    const int64_t step = dx * kSubpixel;  // change of value per row
+    if (dy == 0) {
+      kind = kHorizontal;
+      quotient = value;
+      quotient_step = step;
+      remainder = remainder_step = divisor = 0;
+      return;
+    }
+    kind = dy > 0 ? kUpper : kLower;
+    divisor = (dy > 0 ? dy : -dy) * kSubpixel;
+    quotient = floor_div(value, divisor);
+    remainder = value - quotient * divisor;
+    quotient_step = floor_div(step, divisor);
+    remainder_step = step - quotient_step * divisor;
+  }
+
+  /// Narrows [lo, hi] to the pixels this edge allows on the current row.
+  void clip(int64_t& lo, int64_t& hi) const {
+    switch (kind) {
+      case kUpper:
+        hi = std::min(hi, quotient);
+        break;
+      case kLower:
+        lo = std::max(lo, -quotient);
+        break;
+      case kHorizontal:
+        if (quotient < 0) hi = lo - 1;
+        break;
+    }
+  }
+
+  void next_row() {
+    quotient += quotient_step;
+    remainder += remainder_step;
+    if (kind != kHorizontal && remainder >= divisor) {
+      remainder -= divisor;
+      ++quotient;
+    }
+  }
+};
+
+/// A mip level as the inner loop reads it, held by value so that the output writes (which may
+/// alias any byte) do not force it to be reloaded.
+struct LevelView {
+  const uint8_t* texels;
+  int width, height;
+};
+
+/// Bilinear sample of `level` at texel coordinates (u, v) (texel centres at integers),
+/// clamp-to-edge, with 8-bit sub-texel weights as texture hardware uses: writes 65536 times the
+/// value to out[0..C).
+template <int C>
+[[gnu::always_inline]] inline void bilinear_fixed(const LevelView& level, double u, double v,
+                                                  int32_t* out) {
+  const double u_max = level.width - 1, v_max = level.height - 1;
+  if (!(u >= -1.0)) u = -1.0;  // written so that NaN clamps too
+  if (!(u <= u_max)) u = u_max;
+  if (!(v >= -1.0)) v = -1.0;
+  if (!(v <= v_max)) v = v_max;
+  // Rounded to the nearest 1/256 texel; u + 1 >= 0, so the truncation rounds.
+  const int64_t u_fixed = int64_t((u + 1) * 256 + 0.5), v_fixed = int64_t((v + 1) * 256 + 0.5);
+  const int x = int(u_fixed >> 8) - 1, y = int(v_fixed >> 8) - 1;
+  const int32_t fx = int32_t(u_fixed & 255), fy = int32_t(v_fixed & 255);
+  const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.width - 1);
+  const int y0 = std::max(y, 0), y1 = std::min(y + 1, level.height - 1);
+  const uint8_t* row0 = level.texels + size_t(y0) * size_t(level.width) * C;
+  const uint8_t* row1 = level.texels + size_t(y1) * size_t(level.width) * C;
+  const uint8_t* a = row0 + x0 * C;
+  const uint8_t* b = row0 + x1 * C;
+  const uint8_t* c = row1 + x0 * C;
+  const uint8_t* d = row1 + x1 * C;
+  for (int k = 0; k < C; ++k) {
+    const int32_t top = (int32_t(a[k]) << 8) + (int32_t(b[k]) - int32_t(a[k])) * fx;
+    const int32_t bottom = (int32_t(c[k]) << 8) + (int32_t(d[k]) - int32_t(c[k])) * fx;
+    out[k] = (top << 8) + (bottom - top) * fy;
+  }
+}
+
+/// Shades pixels [lo, hi] of output row `py`, sampling `fine` (and `coarse` when kBlend).
+template <int C, bool kBlend>
+void shade_span(const Triangle& t, LevelView fine, LevelView coarse, int py, int lo, int hi,
+                uint8_t* row) {
+  const TexelMap m0 = t.map[0], m1 = t.map[1];
+  const double u0 = m0.u_y * py + m0.u_0, v0 = m0.v_y * py + m0.v_0;
+  const double u1 = m1.u_y * py + m1.u_0, v1 = m1.v_y * py + m1.v_0;
+  const uint32_t w1 = uint32_t(t.blend), w0 = 256 - w1;
+  for (int px = lo; px <= hi; ++px) {
+    int32_t a[C];
+    bilinear_fixed<C>(fine, u0 + m0.u_x * px, v0 + m0.v_x * px, a);
+    if constexpr (kBlend) {
+      int32_t b[C];
+      bilinear_fixed<C>(coarse, u1 + m1.u_x * px, v1 + m1.v_x * px, b);
+      for (int k = 0; k < C; ++k)  // < 2^32: 255 * 2^16 * 256 + 2^23
+        row[px * C + k] = uint8_t((uint32_t(a[k]) * w0 + uint32_t(b[k]) * w1 + (1u << 23)) >> 24);
+    } else {
+      for (int k = 0; k < C; ++k) row[px * C + k] = uint8_t((a[k] + (1 << 15)) >> 16);
+    }
+  }
+}
+
+/// Draws the part of the triangle (x[i], y[i]) (output pixels, within the guard square) in rows
+/// [row_begin, row_end), shading with `t`.
+template <int C>
+void fill(const double (&x)[3], const double (&y)[3], const Triangle& t, const MipPyramid& pyramid,
+          int row_begin, int row_end, const Target& target) {
+  int64_t fx[3], fy[3];
+  for (int i = 0; i < 3; ++i) {
+    fx[i] = std::llround(x[i] * kSubpixel);
+    fy[i] = std::llround(y[i] * kSubpixel);
+  }
+  const int64_t area = (fx[1] - fx[0]) * (fy[2] - fy[0]) - (fy[1] - fy[0]) * (fx[2] - fx[0]);
+  if (area == 0) return;
+  if (area < 0) {
+    std::swap(fx[1], fx[2]);
+    std::swap(fy[1], fy[2]);
+  }
+  // Rows whose pixel centre lies within the vertical extent.
+  const int64_t y_min = std::min({fy[0], fy[1], fy[2]}), y_max = std::max({fy[0], fy[1], fy[2]});
+  row_begin = int(
+      std::max<int64_t>(row_begin, floor_div(y_min - kSubpixel / 2 + kSubpixel - 1, kSubpixel)));
+  row_end = int(std::min<int64_t>(row_end, floor_div(y_max - kSubpixel / 2, kSubpixel) + 1));
+  if (row_begin >= row_end) return;
+  auto view = [&](int level) {
+    const Image& image = pyramid.level(level);
+    return LevelView{image.pixels.data(), image.width, image.height};
+  };
+  const LevelView fine = view(t.level), coarse = view(t.blend > 0 ? t.level + 1 : t.level);
+  EdgeWalker edges[3] = {EdgeWalker(fx[0], fy[0], fx[1], fy[1], row_begin),
+                         EdgeWalker(fx[1], fy[1], fx[2], fy[2], row_begin),
+                         EdgeWalker(fx[2], fy[2], fx[0], fy[0], row_begin)};
+  for (int py = row_begin; py < row_end; ++py) {
+    int64_t lo = 0, hi = target.width - 1;
+    for (const EdgeWalker& e : edges) e.clip(lo, hi);
+    if (lo <= hi) {
+      uint8_t* row = target.pixels + size_t(py) * size_t(target.width) * C;
+      if (t.blend > 0)
+        shade_span<C, true>(t, fine, coarse, py, int(lo), int(hi), row);
+      else
+        shade_span<C, false>(t, fine, fine, py, int(lo), int(hi), row);
+    }
+    for (EdgeWalker& e : edges) e.next_row();
+  }
+}
+
+struct Point {
+  double x, y;
+};
+
+/// Where segment ab crosses the line coordinate `axis` = `value`. Computed from the endpoints in
+/// a fixed order, so the two triangles sharing an edge get the same point.
+Point crossing(Point a, Point b, int axis, double value) {
+  if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b);
+  const double a_along = axis == 0 ? a.x : a.y, b_along = axis == 0 ? b.x : b.y;
+  const double s = (value - a_along) / (b_along - a_along);
+  Point p{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)};
+  (axis == 0 ? p.x : p.y) = value;
+  return p;
+}
+
+/// Draws triangle `t` in rows [row_begin, row_end), clipping it to the guard square when it
+/// reaches beyond.
+template <int C>
+void draw(const Triangle& t, const MipPyramid& pyramid, int row_begin, int row_end,
+          const Target& target) {
+  bool inside = true;
+  for (int i = 0; i < 3; ++i)
+    inside = inside && std::abs(t.x[i]) <= kGuard && std::abs(t.y[i]) <= kGuard;
+  if (inside) {
+    fill<C>(t.x, t.y, t, pyramid, row_begin, row_end, target);
+    return;
+  }
+  // Sutherland-Hodgman against x >= -G, x <= G, y >= -G, y <= G: at most 7 vertices.
+  Point polygon[8], clipped[8];
+  int n = 3;
+  for (int i = 0; i < 3; ++i) polygon[i] = {t.x[i], t.y[i]};
+  for (int plane = 0; plane < 4 && n > 0; ++plane) {
+    const int axis = plane / 2;
+    const double side = plane % 2 == 0 ? -1 : 1;  // keep side * coordinate <= kGuard
+    auto keep = [&](Point p) { return side * (axis == 0 ? p.x : p.y) <= kGuard; };
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const Point a = polygon[i], b = polygon[(i + 1) % n];
+      if (keep(a)) clipped[m++] = a;
+      if (keep(a) != keep(b)) clipped[m++] = crossing(a, b, axis, side * kGuard);
+    }
+    std::copy(clipped, clipped + m, polygon);
+    n = m;
+  }
+  for (int i = 1; i + 1 < n; ++i) {
+    const double x[3] = {polygon[0].x, polygon[i].x, polygon[i + 1].x};
+    const double y[3] = {polygon[0].y, polygon[i].y, polygon[i + 1].y};
+    fill<C>(x, y, t, pyramid, row_begin, row_end, target);
+  }
+}
+
+/// The map from output pixel indices to texel coordinates of `level`, given the affine map
+/// source = origin + J * (screen - screen_origin) in output pixels.
+TexelMap texel_map(const double (&J)[2][2], double source_x, double source_y, double screen_x,
+                   double screen_y, int level) {
+  const double s = std::ldexp(1.0, -level);
+  // Pixel (px, py) has its centre at (px + 0.5, py + 0.5); texel centres are at integers.
+  const double cx = 0.5 - screen_x, cy = 0.5 - screen_y;
+  return {s * J[0][0], s * J[0][1], s * (source_x + J[0][0] * cx + J[0][1] * cy) - 0.5,
+          s * J[1][0], s * J[1][1], s * (source_y + J[1][0] * cx + J[1][1] * cy) - 0.5};
+}
+
+/// Sets up mesh triangle `f` for drawing into a width x height output.
+Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, int width, int height,
+                int levels) {
+  Triangle t;
+  double sx[3], sy[3];
+  for (int i = 0; i < 3; ++i) {
+    const int v = mesh.F(f, i);
+    t.x[i] = mesh.screen(v, 0) * scale_x;
+    t.y[i] = mesh.screen(v, 1) * scale_y;
+    sx[i] = mesh.source(v, 0);
+    sy[i] = mesh.source(v, 1);
+  }
+  const double x_min = std::min({t.x[0], t.x[1], t.x[2]}),
+               x_max = std::max({t.x[0], t.x[1], t.x[2]});
+  const double y_min = std::min({t.y[0], t.y[1], t.y[2]}),
+               y_max = std::max({t.y[0], t.y[1], t.y[2]});
+  // Conservative (one pixel of slack for the snapping); `fill` finds the exact rows.
+  if (x_max < -1 || x_min > width + 1 || y_max < -1 || y_min > height + 1) return t;
+  const double e1x = t.x[1] - t.x[0], e1y = t.y[1] - t.y[0];
+  const double e2x = t.x[2] - t.x[0], e2y = t.y[2] - t.y[0];
+  const double det = e1x * e2y - e1y * e2x;
+  if (!(std::abs(det) > kMinArea)) return t;
+  // J = [source edges] * [screen edges]^-1: source pixels per output pixel.
+  const double s1x = sx[1] - sx[0], s1y = sy[1] - sy[0];
+  const double s2x = sx[2] - sx[0], s2y = sy[2] - sy[0];
+  const double J[2][2] = {{(s1x * e2y - s2x * e1y) / det, (s2x * e1x - s1x * e2x) / det},
+                          {(s1y * e2y - s2y * e1y) / det, (s2y * e1x - s1y * e2x) / det}};
+  // Largest singular value of J, in closed form.
+  const double sigma = 0.5 * (std::hypot(J[0][0] + J[1][1], J[1][0] - J[0][1]) +
+                              std::hypot(J[0][0] - J[1][1], J[1][0] + J[0][1]));
+  const double lod = sigma > 1 ? std::min(std::log2(sigma), double(levels - 1)) : 0.0;  // NaN: 0
+  t.level = int(lod);
+  t.blend = int(std::lround((lod - t.level) * 256));  // the blend has 8 bits, like the weights
+  if (t.blend == 256) {
+    t.blend = 0;
+    ++t.level;
+  }
+  t.map[0] = texel_map(J, sx[0], sy[0], t.x[0], t.y[0], t.level);
+  if (t.blend > 0) t.map[1] = texel_map(J, sx[0], sy[0], t.x[0], t.y[0], t.level + 1);
+  t.row_begin = int(std::max(0.0, std::floor(y_min - 1)));
+  t.row_end = int(std::min(double(height), std::ceil(y_max + 1)));
+  return t;
+}
+
+void validate(const WarpMesh& mesh, const RenderOptions& options) {
+  const char* fn = "render";
+  require(options.width >= 1 && options.width <= kMaxOutputSide, fn,
+          "width must be in [1, " + std::to_string(kMaxOutputSide) + "], got " +
+              std::to_string(options.width));
+  require(options.height >= 1 && options.height <= kMaxOutputSide, fn,
+          "height must be in [1, " + std::to_string(kMaxOutputSide) + "], got " +
+              std::to_string(options.height));
+  require(options.threads >= 0, fn, "threads must be >= 0, got " + std::to_string(options.threads));
+  require(mesh.screen_width > 0 && mesh.screen_height > 0, fn,
+          "mesh.screen_width and mesh.screen_height must be > 0, got " +
+              std::to_string(mesh.screen_width) + " x " + std::to_string(mesh.screen_height));
+  require(mesh.source.rows() == mesh.screen.rows(), fn,
+          "mesh.source has " + std::to_string(mesh.source.rows()) + " rows but mesh.screen has " +
+              std::to_string(mesh.screen.rows()));
+  // Find the first offender, then build one message: messages are not built per element.
+  const Eigen::Index vertices = mesh.screen.rows();
+  const int* index = mesh.F.data();  // column-major
+  const Eigen::Index index_count = mesh.F.size();
+  const Eigen::Index bad_index =
+      std::find_if(index, index + index_count, [&](int v) { return v < 0 || v >= vertices; }) -
+      index;
+  require(bad_index == index_count, fn, [&] {
+    if (bad_index == index_count) return std::string();
+    const Eigen::Index f = bad_index % mesh.F.rows(), i = bad_index / mesh.F.rows();
+    return "mesh.F(" + std::to_string(f) + ", " + std::to_string(i) +
+           ") = " + std::to_string(mesh.F(f, i)) + " is not a vertex index in [0, " +
+           std::to_string(vertices) + ")";
+  }());
+  Eigen::Index bad_source = 0;
+  while (bad_source < vertices && std::isfinite(mesh.source(bad_source, 0)) &&
+         std::isfinite(mesh.source(bad_source, 1)))
+    ++bad_source;
+  require(bad_source == vertices, fn,
+          "mesh.source row " + std::to_string(bad_source) + " is not finite");
+  const double scale_x = double(options.width) / mesh.screen_width;
+  const double scale_y = double(options.height) / mesh.screen_height;
+  Eigen::Index bad_screen = 0;
+  while (bad_screen < vertices &&
+         std::abs(mesh.screen(bad_screen, 0) * scale_x) <= kMaxCoordinate &&
+         std::abs(mesh.screen(bad_screen, 1) * scale_y) <= kMaxCoordinate)
+    ++bad_screen;
+  require(bad_screen == vertices, fn, [&] {
+    if (bad_screen == vertices) return std::string();
+    return "mesh.screen row " + std::to_string(bad_screen) + " = (" +
+           std::to_string(mesh.screen(bad_screen, 0)) + ", " +
+           std::to_string(mesh.screen(bad_screen, 1)) +
+           ") is not finite or beyond 1e12 output pixels";
+  }());
+}
+
+}  // namespace
+
+MipPyramid::MipPyramid(const Image& source) {
+  require(source.width > 0 && source.height > 0, "MipPyramid",
+          "source must be non-empty, got " + std::to_string(source.width) + " x " +
+              std::to_string(source.height));
+  require(source.channels >= 1 && source.channels <= 4, "MipPyramid",
+          "source channels must be in [1, 4], got " + std::to_string(source.channels));
+  require(source.pixels.size() ==
+              size_t(source.width) * size_t(source.height) * size_t(source.channels),
+          "MipPyramid",
+          "source has " + std::to_string(source.pixels.size()) +
+              " bytes, expected width * height * channels");
+  levels_.push_back(source);
+  while (levels_.back().width > 1 || levels_.back().height > 1)
+    levels_.push_back(downsample(levels_.back()));
+}
+
+void MipPyramid::sample(double x, double y, double lod, float* out) const {
+  lod = std::clamp(lod, 0.0, double(levels() - 1));  // NaN stays NaN: handled below
+  const int fine = lod > 0 ? int(lod) : 0;
+  const float blend = lod > 0 ? float(lod - fine) : 0.0f;
+  with_channels(channels(), [&](auto channels) {
+    constexpr int C = decltype(channels)::value;
+    float acc[C] = {};
+    auto add = [&](int level, float weight) {
+      const double s = std::ldexp(1.0, -level);
+      add_bilinear<C>(levels_[size_t(level)], x * s - 0.5, y * s - 0.5, weight, acc);
+    };
+    add(fine, 1 - blend);
+    if (blend > 0) add(fine + 1, blend);
+    std::copy(acc, acc + C, out);
+  });
+}
+
+Image render(const WarpMesh& mesh, const MipPyramid& source, const RenderOptions& options) {
+  validate(mesh, options);
+  const int width = options.width, height = options.height, C = source.channels();
+  const int threads =
+      options.threads > 0 ? options.threads : std::max(1, int(std::thread::hardware_concurrency()));
+  const double scale_x = double(width) / mesh.screen_width;
+  const double scale_y = double(height) / mesh.screen_height;
+
+  const int triangle_count = int(mesh.F.rows());
+  std::vector<Triangle> triangles(static_cast<size_t>(triangle_count));
+  constexpr int kChunk = 1024;
+  parallel_for((triangle_count + kChunk - 1) / kChunk, threads, [&](int chunk) {
+    const int end = std::min(triangle_count, (chunk + 1) * kChunk);
+    for (int f = chunk * kChunk; f < end; ++f)
+      triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
+  });
+
+  Image out(width, height, C);
+  const Target target{out.pixels.data(), width};
+  // Horizontal bands, a few per thread for balance; each draws every triangle clipped to its
+  // rows, in mesh order, so the result does not depend on the thread count.
+  const int bands = threads == 1 ? 1 : std::min(height, 4 * threads);
+  parallel_for(bands, threads, [&](int band) {
+    const int row_begin = int(int64_t(height) * band / bands);
+    const int row_end = int(int64_t(height) * (band + 1) / bands);
+    with_channels(C, [&](auto channels) {
+      constexpr int kC = decltype(channels)::value;
+      uint8_t* band_pixels = out.at(0, row_begin);
+      const size_t band_size = size_t(row_end - row_begin) * size_t(width) * kC;
+      for (size_t i = 0; i < band_size; i += kC)
+        for (int k = 0; k < kC; ++k) band_pixels[i + k] = options.background[size_t(k)];
+      for (const Triangle& t : triangles)
+        if (t.row_begin < row_end && t.row_end > row_begin)
+          draw<kC>(t, source, std::max(row_begin, t.row_begin), std::min(row_end, t.row_end),
+                   target);
+    });
+  });
+  return out;
+}
+
+}  // namespace geolens

@@ -1,0 +1,169 @@
+#include "geolens/geometry/polygon.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <random>
+
+#include "geolens/core/errors.h"
+#include "support/polygon_reference.h"
+
+namespace geolens {
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+
+Points star(double angle) {
+  Points p;
+  for (int k = 0; k < 10; ++k) {
+    const double a = angle + k * std::numbers::pi / 5, r = k % 2 ? 19.1 : 50;
+    p.push_back(Eigen::Vector2d(60, 55) + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  return p;
+}
+
+const Points kL{{0, 0}, {200, 0}, {200, 60}, {60, 60}, {60, 200}, {0, 200}};
+
+std::string message_of(const Points& poly) {
+  try {
+    validate_polygon(poly, "caller");
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ValidatePolygon, AcceptsSimplePolygonsOfEitherOrientation) {
+  for (const Points& poly : {Points{{0, 0}, {10, 0}, {0, 10}}, Points{{0, 0}, {0, 10}, {10, 0}}, kL,
+                             Points(kL.rbegin(), kL.rend()), star(0.3)}) {
+    EXPECT_NO_THROW(validate_polygon(poly));
+  }
+}
+
+TEST(ValidatePolygon, RejectsEachDefectNamingTheCallerAndTheVertices) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Case {
+    Points poly;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {{{0, 0}, {1, 0}}, "caller: a polygon needs at least 3 vertices, got 2"},
+      {{{0, 0}, {10, 0}, {nan, 5}}, "caller: vertex 2 (nan, 5) is not finite"},
+      {{{0, 0}, {inf, 0}, {5, 5}}, "caller: vertex 1 (inf, 0) is not finite"},
+      {{{0, 0}, {10, 0}, {20, 0}}, "caller: the polygon has zero area"},
+      {{{0, 0}, {10, 0}, {10, 0}, {0, 10}}, "caller: vertices 1 and 2 coincide at (10, 0)"},
+      // Bow tie (of non-zero area): edges 0 and 2 cross.
+      {{{0, 0}, {10, 10}, {10, 0}, {0, 12}},
+       "caller: edge 0 (0, 0)-(10, 10) and edge 2 (10, 0)-(0, 12) intersect"},
+      // A vertex touching a non-adjacent edge.
+      {{{0, 0}, {10, 0}, {10, 10}, {5, 0}, {0, 10}},
+       "caller: edge 0 (0, 0)-(10, 0) and edge 2 (10, 10)-(5, 0) intersect"},
+      // Edge 1 folds back along edge 0.
+      {{{0, 0}, {10, 0}, {5, 0}, {5, 5}},
+       "caller: edge 0 (0, 0)-(10, 0) and edge 1 (10, 0)-(5, 0) intersect"},
+      // The closing edge runs back over edge 0.
+      {{{0, 0}, {10, 0}, {10, 10}, {15, 0}},
+       "caller: edge 0 (0, 0)-(10, 0) and edge 3 (15, 0)-(0, 0) intersect"},
+      // Two loops sharing a vertex.
+      {{{0, 0}, {10, 0}, {5, 5}, {10, 10}, {0, 10}, {5, 5}},
+       "caller: edge 1 (10, 0)-(5, 5) and edge 4 (0, 10)-(5, 5) intersect"},
+  };
+  for (const Case& c : cases) EXPECT_EQ(message_of(c.poly), c.expected);
+  EXPECT_THROW(validate_polygon({{0, 0}, {1, 1}}), InvalidInput);
+}
+
+class PolygonFile : public ::testing::Test {
+ protected:
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = (std::filesystem::path(::testing::TempDir()) / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+};
+
+TEST_F(PolygonFile, ReadsPairsSkippingBlankLinesAndComments) {
+  const std::string path =
+      write("geolens_polygon_good.txt",
+            "# a triangle\n\n10 20\n  30.5\t-4e1  # trailing comment\n\t\n1e2 0.25\r\n");
+  EXPECT_EQ(read_polygon_file(path), (Points{{10, 20}, {30.5, -40}, {100, 0.25}}));
+  EXPECT_TRUE(read_polygon_file(write("geolens_polygon_empty.txt", "# nothing\n")).empty());
+}
+
+TEST_F(PolygonFile, RejectsMalformedLinesNamingFileAndLine) {
+  for (const std::string bad : {"1 2 3", "1", "a b", "1 nan", "1 inf", "1,2", "1 2x"}) {
+    const std::string path = write("geolens_polygon_bad.txt", "0 0\n# fine\n" + bad + "\n5 5\n");
+    try {
+      read_polygon_file(path);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()), "read_polygon_file: " + path +
+                                           ":3: expected two finite numbers \"x y\", got \"" + bad +
+                                           "\"");
+    }
+  }
+}
+
+TEST_F(PolygonFile, RejectsMissingFilesAndDirectories) {
+  const std::string missing = ::testing::TempDir() + "/geolens_no_such_polygon.txt";
+  try {
+    read_polygon_file(missing);
+    ADD_FAILURE();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()), "read_polygon_file: cannot open '" + missing + "'");
+  }
+  EXPECT_THROW(read_polygon_file(::testing::TempDir()), InvalidInput);
+}
+
+TEST(RasterizePolygon, MarksExactlyTheNodesInside) {
+  for (const Points& poly : {kL, star(0.2)}) {
+    const int width = 90, height = 85;
+    const Eigen::Vector2d origin(-3.3, -2.9);
+    const double cell = 2.5;
+    const std::vector<uint8_t> inside = rasterize_polygon(poly, width, height, origin, cell);
+    ASSERT_EQ(inside.size(), size_t(width) * height);
+    for (int j = 0; j < height; ++j) {
+      for (int i = 0; i < width; ++i) {
+        const Eigen::Vector2d p = origin + cell * Eigen::Vector2d(i, j);
+        if (testing::brute_boundary_distance(poly, p) < 1e-9)
+          continue;  // on the boundary: either way
+        EXPECT_EQ(inside[size_t(j) * width + i], testing::brute_inside(poly, p)) << i << " " << j;
+      }
+    }
+  }
+  EXPECT_THROW(rasterize_polygon(kL, 0, 5, {0, 0}, 1), InvalidInput);
+  EXPECT_THROW(rasterize_polygon(kL, 5, 5, {0, 0}, 0), InvalidInput);
+}
+
+TEST(PolygonIndex, AgreesWithBruteForce) {
+  std::mt19937 rng(7);
+  for (const Points& poly : {kL, star(0.2), star(1.3)}) {
+    const PolygonIndex index(poly, 3.0);
+    std::uniform_real_distribution<double> coordinate(-20, 220);
+    for (int k = 0; k < 4000; ++k) {
+      const Eigen::Vector2d p(coordinate(rng), coordinate(rng));
+      const double d = testing::brute_boundary_distance(poly, p);
+      if (d > 1e-9) {
+        EXPECT_EQ(index.contains(p), testing::brute_inside(poly, p)) << p.transpose();
+      }
+      EXPECT_NEAR(index.boundary_distance(p, 7.5), std::min(d, 7.5), 1e-9) << p.transpose();
+      EXPECT_NEAR(index.boundary_distance(p, 300), std::min(d, 300.0), 1e-9) << p.transpose();
+    }
+    // On the boundary the distance is 0 (up to rounding of the sample point).
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
+      for (double t : {0.0, 0.3, 0.5})
+        EXPECT_NEAR(index.boundary_distance(a + t * (b - a), 5), 0, 1e-12);
+    }
+  }
+  EXPECT_EQ(PolygonIndex(kL, 3.0).boundary_distance({500, 500}, 5), 5);
+  EXPECT_FALSE(PolygonIndex(kL, 3.0).contains({50, 1e300}));
+  EXPECT_THROW(PolygonIndex(kL, 0.0), InvalidInput);
+}
+
+}  // namespace
+}  // namespace geolens

@@ -1,0 +1,211 @@
+#include "geolens/io/image.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "support/scratch_folder.h"
+
+namespace fs = std::filesystem;
+using geolens::Image;
+using geolens::InvalidInput;
+using geolens::IoError;
+
+namespace {
+
+/// A fresh empty folder per test, removed afterwards.
+class ImageFileTest : public geolens::testing::ScratchFolderTest {
+ protected:
+  /// Names of the entries of the folder, sorted.
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+};
+
+/// A pattern that uses every byte value and differs between channels.
+Image pattern(int width, int height, int channels) {
+  Image image(width, height, channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c)
+        image.at(x, y)[c] = uint8_t((x * 7 + y * 13 + c * 101 + x * y) % 256);
+  return image;
+}
+
+/// A smooth image (JPEG compresses it well).
+Image gradient(int width, int height, int channels) {
+  Image image(width, height, channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c)
+        image.at(x, y)[c] = uint8_t(40 + (x * 150) / width + (y * 50) / height + c * 10);
+  return image;
+}
+
+double mean_abs_diff(const Image& a, const Image& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) sum += std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+  return sum / double(a.pixels.size());
+}
+
+void write_bytes(const std::string& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+}  // namespace
+
+TEST(ImageTest, ConstructorSizesAndFills) {
+  const Image image(5, 3, 4, 17);
+  EXPECT_EQ(image.width, 5);
+  EXPECT_EQ(image.height, 3);
+  EXPECT_EQ(image.channels, 4);
+  ASSERT_EQ(image.pixels.size(), 5u * 3u * 4u);
+  for (uint8_t v : image.pixels) EXPECT_EQ(v, 17);
+  EXPECT_EQ(image.at(2, 1) - image.pixels.data(), (1 * 5 + 2) * 4);
+}
+
+TEST(ImageTest, ConstructorRejectsBadChannelsAndSizes) {
+  EXPECT_THROW(Image(2, 2, 0), InvalidInput);
+  EXPECT_THROW(Image(2, 2, 5), InvalidInput);
+  EXPECT_THROW(Image(-1, 2, 3), InvalidInput);
+}
+
+TEST(ImageTest, WritablePathsAreDecidedByExtensionIgnoringCase) {
+  EXPECT_TRUE(geolens::is_writable_image_path("a.png"));
+  EXPECT_TRUE(geolens::is_writable_image_path("dir/a.PNG"));
+  EXPECT_TRUE(geolens::is_writable_image_path("a.jpg"));
+  EXPECT_TRUE(geolens::is_writable_image_path("a.JpEg"));
+  EXPECT_FALSE(geolens::is_writable_image_path("a.bmp"));
+  EXPECT_FALSE(geolens::is_writable_image_path("png"));
+  EXPECT_FALSE(geolens::is_writable_image_path("a.png.txt"));
+}
+
+TEST_F(ImageFileTest, PngRoundTripIsLosslessForEveryChannelCount) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const Image image = pattern(37, 23, channels);
+    const std::string file = path("image" + std::to_string(channels) + ".png");
+    geolens::save_image(file, image);
+    const Image loaded = geolens::load_image(file);
+    EXPECT_EQ(loaded.width, image.width);
+    EXPECT_EQ(loaded.height, image.height);
+    EXPECT_EQ(loaded.channels, channels);
+    EXPECT_EQ(loaded.pixels, image.pixels) << channels << " channels";
+  }
+  EXPECT_EQ(entries().size(), 4u);  // no temporary file left behind
+}
+
+TEST_F(ImageFileTest, UpperCaseExtensionsWork) {
+  geolens::save_image(path("a.PNG"), pattern(8, 8, 3));
+  geolens::save_image(path("b.JPEG"), gradient(8, 8, 3));
+  EXPECT_EQ(geolens::load_image(path("a.PNG")).pixels, pattern(8, 8, 3).pixels);
+  EXPECT_EQ(geolens::load_image(path("b.JPEG")).width, 8);
+}
+
+TEST_F(ImageFileTest, JpegRoundTripIsClose) {
+  const Image image = gradient(64, 48, 3);
+  geolens::save_image(path("a.jpg"), image, 95);
+  const Image loaded = geolens::load_image(path("a.jpg"));
+  ASSERT_EQ(loaded.width, 64);
+  ASSERT_EQ(loaded.height, 48);
+  ASSERT_EQ(loaded.channels, 3);
+  EXPECT_LT(mean_abs_diff(loaded, image), 2.0);
+}
+
+TEST_F(ImageFileTest, JpegDropsAlphaAndStoresColour) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const Image image = gradient(32, 32, channels);
+    geolens::save_image(path("a.jpeg"), image);
+    const Image loaded = geolens::load_image(path("a.jpeg"));
+    ASSERT_EQ(loaded.channels, 3);
+    // Grey (+ alpha) reads back as three equal channels, RGB(A) as its colour channels.
+    Image expected(32, 32, 3);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x)
+        for (int c = 0; c < 3; ++c) expected.at(x, y)[c] = image.at(x, y)[channels < 3 ? 0 : c];
+    EXPECT_LT(mean_abs_diff(loaded, expected), 2.0) << channels << " channels";
+  }
+}
+
+TEST_F(ImageFileTest, JpegQualityTradesSizeForError) {
+  const Image image = pattern(64, 64, 3);
+  geolens::save_image(path("low.jpg"), image, 10);
+  geolens::save_image(path("high.jpg"), image, 100);
+  EXPECT_LT(fs::file_size(path("low.jpg")), fs::file_size(path("high.jpg")));
+  EXPECT_LT(mean_abs_diff(geolens::load_image(path("high.jpg")), image),
+            mean_abs_diff(geolens::load_image(path("low.jpg")), image));
+}
+
+TEST_F(ImageFileTest, SaveReplacesAnExistingFile) {
+  geolens::save_image(path("a.png"), Image(4, 4, 1, 10));
+  geolens::save_image(path("a.png"), Image(6, 2, 1, 200));
+  const Image loaded = geolens::load_image(path("a.png"));
+  EXPECT_EQ(loaded.width, 6);
+  EXPECT_EQ(loaded.pixels, Image(6, 2, 1, 200).pixels);
+  EXPECT_EQ(entries(), std::vector<std::string>{"a.png"});
+}
+
+TEST_F(ImageFileTest, MissingFileThrowsInvalidInputNamingThePath) {
+  const std::string file = path("missing.png");
+  try {
+    geolens::load_image(file);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("load_image: cannot read '" + file + "': ", 0), 0u) << message;
+  }
+}
+
+TEST_F(ImageFileTest, CorruptFilesThrowInvalidInput) {
+  write_bytes(path("garbage.png"), "this is not an image at all");
+  EXPECT_THROW(geolens::load_image(path("garbage.png")), InvalidInput);
+  write_bytes(path("empty.jpg"), "");
+  EXPECT_THROW(geolens::load_image(path("empty.jpg")), InvalidInput);
+  // A real PNG cut short.
+  geolens::save_image(path("whole.png"), pattern(64, 64, 3));
+  std::ifstream in(path("whole.png"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_bytes(path("cut.png"), bytes.substr(0, bytes.size() / 2));
+  EXPECT_THROW(geolens::load_image(path("cut.png")), InvalidInput);
+  EXPECT_THROW(geolens::load_image(dir_.string()), InvalidInput);  // a folder
+}
+
+TEST_F(ImageFileTest, UnknownExtensionThrowsAndWritesNothing) {
+  EXPECT_THROW(geolens::save_image(path("a.bmp"), pattern(4, 4, 3)), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("noextension"), pattern(4, 4, 3)), InvalidInput);
+  EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(ImageFileTest, MissingFolderThrowsAndWritesNothing) {
+  EXPECT_THROW(geolens::save_image(path("nowhere/a.png"), pattern(4, 4, 3)), InvalidInput);
+  EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(ImageFileTest, InvalidImageOrQualityThrows) {
+  Image broken(4, 4, 3);
+  broken.pixels.pop_back();
+  EXPECT_THROW(geolens::save_image(path("a.png"), broken), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.png"), Image()), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.jpg"), pattern(4, 4, 3), 0), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.jpg"), pattern(4, 4, 3), 101), InvalidInput);
+  EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(ImageFileTest, FailedWriteThrowsIoErrorAndLeavesNoTemporary) {
+  // The target is a non-empty folder: the final rename cannot replace it.
+  fs::create_directories(dir_ / "taken.png" / "inside");
+  EXPECT_THROW(geolens::save_image(path("taken.png"), pattern(4, 4, 3)), IoError);
+  EXPECT_EQ(entries(), std::vector<std::string>{"taken.png"});
+  EXPECT_TRUE(fs::is_directory(dir_ / "taken.png"));
+}

@@ -1,0 +1,419 @@
+// The focus lens: the region given is magnified as a whole, uniformly and without rotation, the
+// context gives way within the footprint, and nothing beyond it moves.
+
+#include "geolens/lens/focus_lens.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "geolens/core/errors.h"
+#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/footprint_sweep.h"
+#include "geolens/geometry/grid.h"
+#include "geolens/io/image.h"
+#include "geolens/lens/classic_lens.h"
+#include "geolens/lens/flatten.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
+
+namespace geolens {
+namespace {
+
+using Points = std::vector<Eigen::Vector2d>;
+
+Points translated(Points p, const Eigen::Vector2d& by) {
+  for (Eigen::Vector2d& v : p) v += by;
+  return p;
+}
+
+// Shapes around the origin: an L of 60 px arms in a 200 px box, a five-pointed star of outer
+// radius 120 px, a 400 x 40 px strip (10:1).
+const Points kL = {{-100, -100}, {-40, -100}, {-40, 40}, {100, 40}, {100, 100}, {-100, 100}};
+const Points kStrip = {{-200, -20}, {200, -20}, {200, 20}, {-200, 20}};
+Points star() {
+  Points p;
+  for (int k = 0; k < 10; ++k) {
+    const double r = k % 2 == 0 ? 120 : 0.382 * 120,
+                 a = std::numbers::pi / 2 + k * std::numbers::pi / 5;
+    p.emplace_back(r * std::cos(a), -r * std::sin(a));
+  }
+  return p;
+}
+
+TEST(FocusLens, RadialBoundIsThePowerLawsDistortion) {
+  EXPECT_NEAR(radial_distortion_bound(2, 4), 1.0, 1e-12);  // k = 1 / 2
+  EXPECT_NEAR(radial_distortion_bound(3, 9), 1.0, 1e-12);
+  EXPECT_NEAR(radial_distortion_bound(2, 8), 0.5, 1e-12);  // k = 2 / 3
+  EXPECT_EQ(radial_distortion_bound(1, 2), 0.0);
+  EXPECT_TRUE(std::isinf(radial_distortion_bound(4, 4)));
+  EXPECT_THROW(radial_distortion_bound(2, 1), InvalidInput);
+}
+
+TEST(FocusLens, RegionsMeasureDistanceAndReach) {
+  const Region c = Region::circle({100, 100}, 50);
+  EXPECT_DOUBLE_EQ(c.distance({180, 100}), 30);
+  EXPECT_EQ(c.distance({110, 90}), 0);
+  EXPECT_DOUBLE_EQ(c.reach(), 50);
+  const Region square = Region::polygon({{100, 100}, {200, 100}, {200, 200}, {100, 200}});
+  EXPECT_NEAR(square.distance({250, 150}), 50, 1e-9);
+  EXPECT_NEAR(square.distance({230, 240}), 50, 1e-9);
+  EXPECT_EQ(square.distance({150, 150}), 0);
+  EXPECT_NEAR(square.reach(), (square.peak() - Eigen::Vector2d(100, 100)).norm(), 1.5);
+  Image mask(64, 64, 1);
+  for (int y = 10; y < 30; ++y)
+    for (int x = 20; x < 40; ++x) mask.at(x, y)[0] = 255;
+  const Region m = Region::from_mask(mask).front();
+  EXPECT_EQ(m.distance({25.5, 15.5}), 0);
+  EXPECT_NEAR(m.distance({50, 20}), 10, 1e-9);  // the blob's pixels end at x = 40
+  EXPECT_NEAR(m.distance({43, 34}), 5, 1e-9);   // 3-4-5 from the corner (40, 30)
+  EXPECT_GT(m.reach(), 10 * std::numbers::sqrt2);
+}
+
+// A mesh fine enough that the focus is held within a few percent of its reach in an image three
+// times the footprint's size.
+LensOptions fine() {
+  LensOptions options;
+  options.mesh = 250;
+  return options;
+}
+
+// A lens of `shape` centred in an image big enough for its footprint at `zoom`, solved with the
+// defaults: the focus model.
+struct Solved {
+  Lens lens;
+  LensResult result;
+  FocusMeasure focus;
+  DistortionSummary summary;
+};
+Solved solve_centred(const Points& shape, double zoom, double radius = 0) {
+  const Region probe = radius > 0 ? Region::circle({0, 0}, radius) : Region::polygon(shape);
+  // The footprint (2 zoom reach) and room beyond it, so the image border does not limit the zoom.
+  const double side = std::ceil(3 * (2 * zoom * probe.reach()) + 200);
+  const Eigen::Vector2d centre(side / 2, side / 2);
+  Lens lens{radius > 0 ? Region::circle(centre, radius)
+                       : Region::polygon(translated(shape, centre - probe.peak())),
+            zoom};
+  const GeometricLens geometric(side, side, fine());
+  Solved s{lens, geometric.solve({lens}), {}, {}};
+  const TriangleDistortion measures = measure_triangles(s.result.warp);
+  s.focus = measure_foci(s.result.warp, measures, {lens}).front();
+  s.summary = summarize(measures);
+  return s;
+}
+
+void expect_uniform_focus(const Solved& s, double zoom) {
+  EXPECT_EQ(s.result.model, LensModel::kFocus);
+  ASSERT_EQ(s.result.zoom_fits.size(), 1u);
+  EXPECT_GE(s.result.zoom_fits[0], zoom);
+  EXPECT_NEAR(s.focus.zoom / zoom, 1.0, 0.05);
+  EXPECT_LE(s.focus.uniformity, 1.1);
+  EXPECT_LE(s.focus.shape_max, 0.1);
+  EXPECT_LE(s.focus.shape_mean, s.focus.shape_max);
+  EXPECT_EQ(s.summary.flipped, 0);
+  EXPECT_EQ(s.focus.displacement_beyond_footprint, 0.0);
+  EXPECT_GT(s.focus.footprint_radius, s.lens.region.reach());
+}
+
+class FocusZoom : public ::testing::TestWithParam<double> {};
+
+TEST_P(FocusZoom, CircleIsMagnifiedUniformlyAndNothingBeyondItsFootprintMoves) {
+  expect_uniform_focus(solve_centred({}, GetParam(), 150), GetParam());
+}
+TEST_P(FocusZoom, LIsMagnifiedAsAWhole) {
+  expect_uniform_focus(solve_centred(kL, GetParam()), GetParam());
+}
+TEST_P(FocusZoom, StarIsMagnifiedAsAWhole) {
+  expect_uniform_focus(solve_centred(star(), GetParam()), GetParam());
+}
+TEST_P(FocusZoom, TenToOneStripIsMagnifiedAlongAsMuchAsAcross) {
+  expect_uniform_focus(solve_centred(kStrip, GetParam()), GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Zooms, FocusZoom, ::testing::Values(2.0, 3.0, 4.0));
+
+// A mask's blob (a disk with a notch) the same way.
+TEST(FocusLens, MaskBlobIsMagnifiedAsAWhole) {
+  for (const double zoom : {2.0, 3.0, 4.0}) {
+    const int side = int(3 * 2 * zoom * 120 + 200);  // the reach from the peak is below 120
+    Image mask(side, side, 1);
+    const double c = side / 2.0;
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x)
+        if (std::hypot(x + 0.5 - c, y + 0.5 - c) < 80 && !(x > c && std::abs(y + 0.5 - c) < 15))
+          mask.at(x, y)[0] = 255;
+    const Lens lens{Region::from_mask(mask).front(), zoom};
+    const LensResult r = GeometricLens(side, side, fine()).solve({lens});
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    const Solved s{lens, r, measure_foci(r.warp, measures, {lens}).front(), summarize(measures)};
+    SCOPED_TRACE(zoom);
+    expect_uniform_focus(s, zoom);
+  }
+}
+
+// Near a border the ring is shorter on that side: a lens asks for no more than fits there, and a
+// region over the image's corner is magnified about the corner, which stays.
+TEST(FocusLens, ALensAtTheCornerKeepsTheCornerAndFitsItsZoom) {
+  const Lens lens{Region::circle({0, 0}, 100), 2.0};
+  const GeometricLens geometric(1024, 1024);
+  const LensResult r = geometric.solve({lens});
+  ASSERT_EQ(r.zoom_fits.size(), 1u);
+  EXPECT_GE(r.zoom_fits[0], 2.0);
+  const FocusMeasure f = measure_foci(r.warp, measure_triangles(r.warp), {lens}).front();
+  EXPECT_NEAR(f.zoom, 2.0, 0.1);
+  EXPECT_LE(f.uniformity, 1.1);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  // The output still fills the frame: the image's corners stay where they are.
+  EXPECT_EQ(r.warp.screen.colwise().minCoeff(), Eigen::RowVector2d(0, 0));
+  EXPECT_EQ(r.warp.screen.colwise().maxCoeff(), Eigen::RowVector2d(1024, 1024));
+}
+
+TEST(FocusLens, ALensThatDoesNotFitIsSolvedAtTheZoomThatFits) {
+  const Lens lens{Region::circle({300, 300}, 200), 3.0};
+  const LensResult r = GeometricLens(1024, 1024).solve({lens});
+  ASSERT_EQ(r.zoom_fits.size(), 1u);
+  EXPECT_LT(r.zoom_fits[0], 3.0);
+  EXPECT_NEAR(r.zoom_measured[0], std::max(1.0, r.zoom_fits[0]), 0.05 * r.zoom_fits[0]);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+}
+
+TEST(FocusLens, FootprintMustExceedTheZoom) {
+  Lens lens{Region::circle({500, 500}, 50), 2.0};
+  lens.footprint = 2.0;
+  EXPECT_THROW(GeometricLens(1024, 1024).solve({lens}), InvalidInput);
+  lens.footprint = 6.0;
+  const LensResult r = GeometricLens(1024, 1024).solve({lens});
+  EXPECT_NEAR(r.zoom_measured[0], 2.0, 0.05);
+  // A wider footprint spreads the same compression thinner.
+  lens.footprint = 3.0;
+  const LensResult tight = GeometricLens(1024, 1024).solve({lens});
+  EXPECT_LT(summarize(measure_triangles(r.warp)).conformal_max,
+            summarize(measure_triangles(tight.warp)).conformal_max);
+}
+
+// The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
+TEST(FocusLens, UpdateFollowsADraggedLens) {
+  GeometricLens geometric(1024, 1024);
+  for (int step = 0; step < 6; ++step) {
+    const Lens lens{Region::circle({440.0 + 12 * step, 500.0 + 5 * step}, 80), 2.0};
+    const LensResult& r = geometric.update({lens});
+    const FocusMeasure f = measure_foci(r.warp, measure_triangles(r.warp), {lens}).front();
+    SCOPED_TRACE(step);
+    EXPECT_NEAR(f.zoom, 2.0, 0.1);
+    EXPECT_LE(f.uniformity, 1.1);
+    EXPECT_EQ(f.displacement_beyond_footprint, 0.0);
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  }
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Lenses whose magnified foci would overlap are magnified together, as one similarity: both
+// regions at the larger zoom, and the distance between them magnified by it too.
+TEST(FocusLens, OverlappingFociAreMagnifiedTogether) {
+  const std::vector<Lens> lenses = {Lens{Region::circle({900, 1000}, 80), 2.0},
+                                    Lens{Region::circle({1100, 1000}, 80), 2.5}};
+  const LensResult r = GeometricLens(2000, 2000).solve(lenses);
+  const std::vector<FocusMeasure> f = measure_foci(r.warp, measure_triangles(r.warp), lenses);
+  for (const FocusMeasure& m : f) {
+    EXPECT_NEAR(m.zoom, 2.5, 0.05);
+    EXPECT_LE(m.uniformity, 1.1);
+  }
+  // The two centres move apart by the zoom: the union is one magnified picture.
+  auto screen_of = [&](const Eigen::Vector2d& p) {
+    Eigen::Index nearest;
+    (r.warp.source.rowwise() - p.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+    return Eigen::Vector2d(r.warp.screen.row(nearest).transpose());
+  };
+  EXPECT_NEAR((screen_of({1100, 1000}) - screen_of({900, 1000})).norm(), 2.5 * 200, 2.5 * 10);
+}
+
+// The robustness sweep: 1000 seeded setups on a 512 px image, 1 to 6 lenses of radius 5
+// to 400 px and zoom 1 to 8 anywhere (corners, borders, centre), overlapping or not. No triangle
+// flips, no focus is shrunk, and every lens that fits where it is and whose magnified focus
+// overlaps no other's reaches its zoom (or the largest that fits there) over its whole region.
+TEST(FocusLens, ThousandRandomSetups) {
+  std::mt19937 random(20261129);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int flipped = 0, shrunk = 0, missed = 0, alone = 0;
+  LensOptions options;
+  options.mesh = 50;
+  for (int setup = 0; setup < 1000; ++setup) {
+    std::vector<Lens> lenses;
+    const int count = 1 + int(unit(random) * 6);
+    for (int k = 0; k < count; ++k) {
+      // A third of the centres on a corner or a side.
+      Eigen::Vector2d c(unit(random) * 512, unit(random) * 512);
+      const double where = unit(random);
+      if (where < 0.15)
+        c = Eigen::Vector2d(unit(random) < 0.5 ? 0 : 512, unit(random) < 0.5 ? 0 : 512);
+      else if (where < 0.33)
+        c.x() = unit(random) < 0.5 ? 0 : 512;
+      const double radius = 5 + std::pow(unit(random), 3) * 395;  // small ones more often
+      lenses.push_back(Lens{Region::circle(c, radius), 1 + unit(random) * 7});
+    }
+    const LensResult r = GeometricLens(512, 512, options).solve(lenses);
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    flipped += summarize(measures).flipped;
+    const std::vector<FocusMeasure> f = measure_foci(r.warp, measures, lenses);
+    std::vector<double> log_zooms;
+    for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+    for (const FocusGroup& g : focus_groups(lenses, log_zooms)) {
+      for (size_t k : g.lenses) {
+        if (f[k].zoom < 1 - 1e-6) {
+          ++shrunk;
+          ADD_FAILURE() << "setup " << setup << " lens " << k << " shrunk to " << f[k].zoom
+                        << " (fit " << r.zoom_fits[k] << ", centre "
+                        << lenses[k].region.peak().transpose() << ", radius "
+                        << lenses[k].region.size() << ")";
+        }
+        if (g.lenses.size() > 1) continue;
+        // A lens that does not fit is solved at the largest zoom that does.
+        const double zoom = std::min(lenses[k].zoom, std::max(1.0, r.zoom_fits[k]));
+        alone += zoom == lenses[k].zoom;
+        if (std::abs(f[k].zoom / zoom - 1) > 0.05) {
+          ++missed;
+          std::string d;
+          for (const Lens& l : lenses)
+            d += " --lens circle:" + std::to_string(l.region.peak().x()) + "," +
+                 std::to_string(l.region.peak().y()) + "," + std::to_string(l.region.size()) + ":" +
+                 std::to_string(l.zoom);
+          ADD_FAILURE() << "setup " << setup << " lens " << k << " zoom " << zoom << " measured "
+                        << f[k].zoom << d;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(flipped, 0);
+  EXPECT_EQ(shrunk, 0);
+  EXPECT_EQ(missed, 0);
+  // Most lenses of these sizes and zooms do not fit on a 512 px image where they are (and are
+  // solved at the largest zoom that does); these many do and reach the zoom asked.
+  EXPECT_GE(alone, 20);
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Where a WarpMesh sends a source point: barycentric lookup in the triangle that holds it
+// (source triangles bucketed on a coarse raster). False if no triangle holds it.
+class ForwardMap {
+ public:
+  ForwardMap(const WarpMesh& warp, double width, double height)
+      : warp_(warp), columns_(int(width / kBucket) + 1), rows_(int(height / kBucket) + 1) {
+    buckets_.resize(size_t(columns_) * size_t(rows_));
+    for (Eigen::Index f = 0; f < warp.F.rows(); ++f) {
+      Eigen::AlignedBox2d box;
+      for (int k = 0; k < 3; ++k) box.extend(Eigen::Vector2d(warp.source.row(warp.F(f, k))));
+      for (int y = std::max(0, int(box.min().y() / kBucket));
+           y <= std::min(rows_ - 1, int(box.max().y() / kBucket)); ++y)
+        for (int x = std::max(0, int(box.min().x() / kBucket));
+             x <= std::min(columns_ - 1, int(box.max().x() / kBucket)); ++x)
+          buckets_[size_t(y) * size_t(columns_) + size_t(x)].push_back(int(f));
+    }
+  }
+  bool operator()(const Eigen::Vector2d& p, Eigen::Vector2d& out) const {
+    const int x = std::min(columns_ - 1, int(p.x() / kBucket));
+    const int y = std::min(rows_ - 1, int(p.y() / kBucket));
+    for (const int f : buckets_[size_t(y) * size_t(columns_) + size_t(x)]) {
+      const Eigen::Vector2d a = warp_.source.row(warp_.F(f, 0));
+      Eigen::Matrix2d M;
+      M << Eigen::Vector2d(warp_.source.row(warp_.F(f, 1))) - a,
+          Eigen::Vector2d(warp_.source.row(warp_.F(f, 2))) - a;
+      const Eigen::Vector2d l = M.inverse() * (p - a);
+      if (l.x() < -1e-9 || l.y() < -1e-9 || l.x() + l.y() > 1 + 1e-9) continue;
+      out = (1 - l.x() - l.y()) * Eigen::Vector2d(warp_.screen.row(warp_.F(f, 0))) +
+            l.x() * Eigen::Vector2d(warp_.screen.row(warp_.F(f, 1))) +
+            l.y() * Eigen::Vector2d(warp_.screen.row(warp_.F(f, 2)));
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  static constexpr double kBucket = 8;
+  const WarpMesh& warp_;
+  int columns_, rows_;
+  std::vector<std::vector<int>> buckets_;
+};
+
+// The picture does not depend on the mesh: a circle's lens on the 100 grid sends every source
+// point where a 4x finer solve sends it within 0.25 px (0.015 px on average; measured 0.19 and
+// 0.011). Its grid follows the focus circle and the footprint's edge, which is the group's disk
+// where the border is not near (the smooth minimum with the border is the plain one there);
+// with the edge rounded by the border everywhere it was 1.09 px, without the rings 8.9 px.
+TEST(FocusLens, AFinerMeshMovesNoPointFar) {
+  const std::vector<Lens> lenses = {Lens{Region::circle({512, 512}, 100), 2.0}};
+  LensOptions coarse, fine;
+  coarse.mesh = 100;
+  fine.mesh = 400;
+  const LensResult a = GeometricLens(1024, 1024, coarse).solve(lenses);
+  const LensResult b = GeometricLens(1024, 1024, fine).solve(lenses);
+  const ForwardMap map_a(a.warp, 1024, 1024), map_b(b.warp, 1024, 1024);
+  double worst = 0, sum = 0;
+  int count = 0;
+  for (double y = 2; y < 1024; y += 4) {
+    for (double x = 2; x < 1024; x += 4) {
+      Eigen::Vector2d pa, pb;
+      ASSERT_TRUE(map_a({x, y}, pa) && map_b({x, y}, pb)) << x << ", " << y;
+      worst = std::max(worst, (pa - pb).norm());
+      sum += (pa - pb).norm();
+      ++count;
+    }
+  }
+  EXPECT_LT(worst, 0.25);
+  EXPECT_LT(sum / count, 0.015);
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// The trade-off: at every footprint the focus lens stays within 25 % of the radial bound, below
+// every classic lens with a uniform focus but the bound-reaching power ring (within 5 % of the
+// bound on a 400 grid for the classic lenses; 7 % on the 200 grid), and its focus is uniform.
+TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
+  LensOptions options;
+  options.mesh = 200;
+  const Lens lens{Region::circle({256, 256}, 25), 2.0};
+  const Sweep sweep = footprint_sweep(512, 512, lens, options, {4, 8}, 400);
+  ASSERT_EQ(sweep.ratios.size(), 2u);
+  ASSERT_EQ(sweep.points.size(), 2 * (1 + kClassicLenses.size()));
+  for (size_t i = 0; i < sweep.ratios.size(); ++i) {
+    SCOPED_TRACE(sweep.ratios[i]);
+    auto at = [&](const std::string& method) {
+      for (const SweepPoint& p : sweep.points)
+        if (p.method == method && p.ratio == sweep.ratios[i]) return p;
+      ADD_FAILURE() << method << " missing";
+      return SweepPoint{};
+    };
+    const SweepPoint geometric = at("geometric");
+    EXPECT_NEAR(geometric.zoom, 2.0, 0.02);
+    EXPECT_LE(geometric.uniformity, 1.01);
+    EXPECT_NEAR(sweep.bound[i], radial_distortion_bound(geometric.zoom, sweep.ratios[i]), 1e-12);
+    EXPECT_LE(geometric.shape_max, 1.25 * sweep.bound[i]);
+    EXPECT_NEAR(at("power_ring").shape_max / sweep.bound[i], 1.0, 0.05);
+    for (const char* flat : {"bifocal", "flattop_linear", "flattop_cosine"}) {
+      EXPECT_LE(at(flat).uniformity, 1.01) << flat;
+      EXPECT_LT(geometric.shape_max, at(flat).shape_max) << flat;
+    }
+  }
+  const Image plot = plot_sweep(sweep);
+  EXPECT_EQ(plot.width, 720);
+  EXPECT_EQ(plot.channels, 3);
+  EXPECT_THROW(footprint_sweep(512, 512, lens, options, {1.5}), InvalidInput);  // not > zoom
+}
+
+}  // namespace
+}  // namespace geolens

@@ -1,0 +1,236 @@
+#include "geolens/lens/geometric_lens.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <tuple>
+
+#include "geolens/core/errors.h"
+#include "geolens/measure/distortion.h"
+#include "support/lens_options.h"
+
+namespace geolens {
+namespace {
+
+Lens circle(double x, double y, double radius, double zoom, Profile profile) {
+  return Lens{Region::circle({x, y}, radius), zoom, profile};
+}
+
+// The acceptance case: 1024 x 1024, r = 150 at the centre, default options.
+class ZoomTest : public ::testing::TestWithParam<std::tuple<Profile, double>> {};
+
+TEST_P(ZoomTest, MeasuredZoomIsWithinTenPercentWithoutFlips) {
+  const auto [profile, zoom] = GetParam();
+  const GeometricLens lens(1024, 1024, test::auto_model());
+  const LensResult r = lens.solve({circle(512, 512, 150, zoom, profile)});
+  EXPECT_NEAR(r.zoom_measured[0] / zoom, 1.0, 0.10);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+  EXPECT_TRUE(r.flattening.converged);
+  EXPECT_LE(r.flattening.iterations, 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(ProfilesAndZooms, ZoomTest,
+                         ::testing::Combine(::testing::Values(Profile::kGaussian, Profile::kSphere,
+                                                              Profile::kMesa),
+                                            ::testing::Values(1.5, 2.0, 3.0)));
+
+TEST(GeometricLens, ZoomOneIsTheIdentity) {
+  const GeometricLens lens(300, 200, test::auto_model());
+  const LensResult r = lens.solve({circle(150, 100, 60, 1.0, Profile::kGaussian)});
+  EXPECT_EQ(r.heights[0], 0.0);
+  EXPECT_LT((r.warp.source - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((r.warp.screen - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(r.zoom_measured[0], 1.0, 1e-9);
+}
+
+// Mirror-symmetric grid: an even number of cells per side (mesh 41 -> 40 cells).
+TEST(GeometricLens, CentredLensOnASquareImageGivesASymmetricWarp) {
+  LensOptions options = test::auto_model();
+  options.mesh = 41;
+  const GeometricLens lens(400, 400, options);
+  const LensResult r = lens.solve({circle(200, 200, 80, 2.0, Profile::kGaussian)});
+  const Grid& g = lens.grid();
+  double asymmetry = 0, moved = 0;
+  for (int row = 0; row < g.rows; ++row) {
+    for (int col = 0; col < g.columns; ++col) {
+      const int i = row * g.columns + col;
+      const int mirror_x = row * g.columns + (g.columns - 1 - col);
+      const int mirror_y = (g.rows - 1 - row) * g.columns + col;
+      const int transpose = col * g.columns + row;
+      const Eigen::Vector2d p = r.warp.screen.row(i);
+      const Eigen::Vector2d px = r.warp.screen.row(mirror_x), py = r.warp.screen.row(mirror_y),
+                            pt = r.warp.screen.row(transpose);
+      asymmetry = std::max({asymmetry, (Eigen::Vector2d(400 - px.x(), px.y()) - p).norm(),
+                            (Eigen::Vector2d(py.x(), 400 - py.y()) - p).norm(),
+                            (Eigen::Vector2d(pt.y(), pt.x()) - p).norm()});
+      moved = std::max(moved, (p - g.V.row(i).transpose()).norm());
+    }
+  }
+  EXPECT_GT(moved, 5.0);
+  EXPECT_LT(asymmetry, 1e-6 * 400);
+}
+
+TEST(GeometricLens, RejectsInvalidLenses) {
+  const GeometricLens lens(100, 100, test::auto_model());
+  EXPECT_THROW(lens.solve({circle(50, 50, 0, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, -3, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(150, 50, 10, 2, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, 10, 9, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, 10, 0.5, Profile::kGaussian)}), InvalidInput);
+  EXPECT_THROW(lens.solve({circle(50, 50, std::nan(""), 2, Profile::kGaussian)}), InvalidInput);
+  LensOptions options = test::auto_model();
+  options.mesh = 3;
+  EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
+  options.mesh = 1001;
+  EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// The interactive path against the exact, stateless one: a lens dragged in 4 px steps. Every
+// update keeps its zoom, flips nothing, and its energy is within 1 % of a fresh exact solve of
+// the same lens (same heights, same grid: subdivision off for the comparison); for a circle (the
+// lift model) and a star polygon (the field model).
+TEST(GeometricLens, UpdateMatchesTheExactSolveWhileTheLensMoves) {
+  LensOptions options = test::auto_model();
+  options.mesh = 60;
+  options.subdivision.max_levels = 0;
+  auto star = [](const Eigen::Vector2d& centre) {
+    std::vector<Eigen::Vector2d> p;
+    for (int k = 0; k < 10; ++k) {
+      const double r = k % 2 == 0 ? 100 : 45, a = M_PI / 2 + k * M_PI / 5;
+      p.push_back(centre + r * Eigen::Vector2d(std::cos(a), -std::sin(a)));
+    }
+    return Region::polygon(p);
+  };
+  for (const bool polygon : {false, true}) {
+    GeometricLens moving(600, 500, options);
+    const GeometricLens exact(600, 500, options);
+    for (int step = 0; step < 6; ++step) {
+      const Eigen::Vector2d centre(250.0 + 4 * step, 240.0 - 3 * step);
+      const Lens lens{polygon ? star(centre) : Region::circle(centre, 90), 2.5};
+      const LensResult& r = moving.update({lens});
+      SCOPED_TRACE(std::string(polygon ? "star" : "circle") + ", step " + std::to_string(step));
+      EXPECT_EQ(r.model, polygon ? LensModel::kField : LensModel::kLift);
+      EXPECT_NEAR(r.zoom_measured[0] / 2.5, 1.0, 0.03);
+      EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+      EXPECT_TRUE(r.flattening.converged);
+      if (step > 0) EXPECT_LE(r.solves, 2) << "the previous heights should be reused";
+      const LensResult reference = exact.solve_with_heights({lens}, r.heights);
+      EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
+    }
+  }
+}
+
+// The interactive path under an erratic user: small moves, jumps, stops, zoom changes, a second
+// lens coming and going, a polygon switching the model. Every frame keeps its zoom, folds
+// nothing and ends within 1 % of a fresh exact solve's energy at the same heights.
+TEST(GeometricLens, UpdateSurvivesAnErraticSequence) {
+  LensOptions options = test::auto_model();
+  options.mesh = 50;
+  GeometricLens moving(800, 600, options);
+  const GeometricLens exact(800, 600, options);
+  const std::vector<Eigen::Vector2d> square = {{500, 150}, {620, 150}, {620, 260}, {500, 260}};
+  std::vector<Lens> lenses = {Lens{Region::circle({300, 300}, 90), 2.0}};
+  for (int frame = 0; frame < 24; ++frame) {
+    Lens& first = lenses[0];
+    const Eigen::Vector2d c = first.region.peak();
+    switch (frame % 8) {
+      case 0:
+      case 1:
+      case 2:  // small moves
+        first.region = Region::circle(c + Eigen::Vector2d(5, -3), 90);
+        break;
+      case 3:  // a stop: the same lenses again
+        break;
+      case 4:  // a jump
+        first.region = Region::circle({800 - c.x(), 600 - c.y()}, 90);
+        break;
+      case 5:  // a new zoom, and a second lens (a polygon: the field model)
+        first.zoom = first.zoom == 2.0 ? 2.5 : 2.0;
+        lenses.push_back(Lens{Region::polygon(square), 2.0});
+        break;
+      case 6:  // the polygon moves with the circle
+        first.region = Region::circle(c + Eigen::Vector2d(-4, 4), 90);
+        break;
+      case 7:  // the polygon goes
+        lenses.pop_back();
+        break;
+    }
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    const LensResult& r = moving.update(lenses);
+    for (size_t k = 0; k < lenses.size(); ++k)
+      EXPECT_NEAR(r.zoom_measured[k] / lenses[k].zoom, 1.0, 0.1) << "lens " << k;
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+    const LensResult reference = exact.solve_with_heights(lenses, r.heights);
+    EXPECT_EQ(r.model, reference.model);
+    EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
+  }
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Local extent: the patch around the lens is solved, the rest of the image is the identity, and
+// the warp still covers the image exactly once.
+TEST(GeometricLens, LocalExtentSolvesAPatchAndLeavesTheRestAlone) {
+  LensOptions options = test::auto_model();
+  options.mesh = 50;
+  options.extent = Extent::kLocal;
+  options.extent_factor = 2.0;
+  const GeometricLens lens(2000, 1500, options);
+  const LensResult r = lens.solve({Lens{Region::circle({700, 600}, 100), 2.0}});
+  EXPECT_NEAR(r.zoom_measured[0], 2.0, 0.1);
+  EXPECT_TRUE(
+      r.box.isApprox(Eigen::AlignedBox2d(Eigen::Vector2d(500, 400), Eigen::Vector2d(900, 800))));
+  const TriangleDistortion d = measure_triangles(r.warp);
+  EXPECT_EQ(summarize(d).flipped, 0);
+  EXPECT_NEAR(d.source_area.sum(), 2000.0 * 1500.0, 1e-6);
+  // Vertices on and outside the patch border keep their place.
+  for (Eigen::Index i = 0; i < r.warp.source.rows(); ++i) {
+    const Eigen::Vector2d p = r.warp.source.row(i);
+    if (!r.box.contains(p) || i >= r.mesh.V.rows() || r.mesh.sides[size_t(i)] != 0)
+      EXPECT_LT((r.warp.screen.row(i) - r.warp.source.row(i)).norm(), 1e-9) << i;
+  }
+  // A lens near the image corner clips the patch; the frame skips the empty trapezoids.
+  const LensResult corner = lens.solve({Lens{Region::circle({120, 100}, 90), 2.0}});
+  const TriangleDistortion dc = measure_triangles(corner.warp);
+  EXPECT_EQ(summarize(dc).flipped, 0);
+  EXPECT_NEAR(dc.source_area.sum(), 2000.0 * 1500.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// Several lenses in one solve, each calibrated to its own zoom; overlapping ones combine by max
+// of height without a fold.
+TEST(GeometricLens, SeveralLensesEachReachTheirZoom) {
+  const GeometricLens lens(1024, 1024, test::auto_model());
+  const std::vector<std::vector<Lens>> cases = {
+      {Lens{Region::circle({300, 300}, 110), 2.0}, Lens{Region::circle({720, 700}, 130), 3.0}},
+      {Lens{Region::circle({450, 500}, 120), 2.0}, Lens{Region::circle({600, 520}, 120), 2.5}},
+      {Lens{Region::circle({200, 200}, 90), 1.5}, Lens{Region::circle({800, 200}, 90), 2.0},
+       Lens{Region::circle({512, 512}, 110), 2.5}, Lens{Region::circle({200, 800}, 90), 3.0},
+       Lens{Region::circle({820, 820}, 90), 2.0, Profile::kMesa}}};
+  for (const std::vector<Lens>& lenses : cases) {
+    const LensResult r = lens.solve(lenses);
+    for (size_t k = 0; k < lenses.size(); ++k)
+      EXPECT_NEAR(r.zoom_measured[k] / lenses[k].zoom, 1.0, 0.15)
+          << lenses.size() << " lenses, lens " << k;
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0) << lenses.size() << " lenses";
+  }
+}
+
+}  // namespace
+}  // namespace geolens
