@@ -17,6 +17,7 @@
 #include "geolens/eval/footprint_sweep.h"
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
+#include "geolens/io/run_files.h"
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/focus_lens.h"
 #include "geolens/lens/geometric_lens.h"
@@ -299,7 +300,7 @@ namespace {
 
 // --sweep: the footprint sweep of one lens, written as JSON, Markdown and a plot.
 int run_sweep(const CompareArgs& a, const fs::path& dir, const Image& source, const Lens& lens,
-              const LensOptions& options) {
+              const LensOptions& options, RunFiles& files) {
   const double z = lens.zoom;
   std::vector<double> ratios = {z + 1, 1.5 * z, 2 * z, 3 * z, 4 * z};
   std::sort(ratios.begin(), ratios.end());
@@ -342,10 +343,12 @@ int run_sweep(const CompareArgs& a, const fs::path& dir, const Image& source, co
     }
     md << "\n";
   }
-  if (!fs::exists(dir)) fs::create_directory(dir);
-  save_image((dir / ("sweep." + a.format)).string(), plot_sweep(sweep), a.jpeg_quality);
-  write_file((dir / "sweep.json").string(), nlohmann::json({{"points", rows}}).dump(2) + "\n");
-  write_file((dir / "sweep.md").string(), md.str());
+  save_image(files.staged((dir / ("sweep." + a.format)).string()), plot_sweep(sweep),
+             a.jpeg_quality);
+  write_file(files.staged((dir / "sweep.json").string()),
+             nlohmann::json({{"points", rows}}).dump(2) + "\n");
+  write_file(files.staged((dir / "sweep.md").string()), md.str());
+  files.commit();
   return 0;
 }
 
@@ -356,13 +359,6 @@ int run_compare(const CompareArgs& a) {
   require(!a.output.empty(), "--output", "output folder must not be empty");
   fs::path dir = a.output;
   if (!dir.has_filename()) dir = dir.parent_path();  // "out/" is the folder "out"
-  if (fs::exists(dir)) {
-    require(fs::is_directory(dir), "--output", "'" + a.output + "' exists and is not a folder");
-  } else {
-    const fs::path parent = dir.parent_path();
-    require(parent.empty() || fs::is_directory(parent), "--output",
-            "folder '" + parent.string() + "' of '" + a.output + "' does not exist");
-  }
   require(a.format == "png" || a.format == "jpg", "--format",
           "expected png or jpg, got '" + a.format + "'");
   require(a.jpeg_quality >= 1 && a.jpeg_quality <= 100, "--jpeg-quality",
@@ -373,17 +369,24 @@ int run_compare(const CompareArgs& a) {
           "must be in [4, 1000], got " + std::to_string(a.baseline_mesh));
   require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
           "must be >= 0, got " + std::to_string(a.heat_max));
+  RunFiles files;
+  files.add_input("the input image", a.input);
+  for (const LensSpecFile& f : cli::lens_files(a.lens))
+    files.add_input("the --lens " + f.kind + " file", f.path);
+  files.add_folder("--output", dir.string());
+  files.check();  // the folder; its files once the lenses tell which
+  auto output = [&](const std::string& name) {
+    files.add_output("--output", (dir / name).string());
+  };
   const LensOptions options = cli::parse_options(a.lens);
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
   if (a.sweep) {
     require(lenses.size() == 1, "--sweep", "sweeps one lens, got " + std::to_string(lenses.size()));
-    for (const char* name : {"sweep.json", "sweep.md"})
-      require(!same_file(a.input, (dir / name).string()), "--output",
-              "'" + (dir / name).string() + "' would overwrite the input file");
-    require(!same_file(a.input, (dir / ("sweep." + a.format)).string()), "--output",
-            "the plot would overwrite the input file");
-    return run_sweep(a, dir, source, lenses.front(), options);
+    for (const char* name : {"sweep.json", "sweep.md"}) output(name);
+    output("sweep." + a.format);
+    files.check();
+    return run_sweep(a, dir, source, lenses.front(), options, files);
   }
   // The classic lenses are radial: they take part when every lens is a circle.
   const bool classic = std::all_of(lenses.begin(), lenses.end(), [](const Lens& lens) {
@@ -401,15 +404,13 @@ int run_compare(const CompareArgs& a) {
   std::vector<std::string> names = {"geometric"};
   if (classic)
     for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
-  std::vector<fs::path> outputs = {dir / "report.json", dir / "report.md",
-                                   dir / ("panel." + a.format)};
   for (const std::string& name : names) {
-    outputs.push_back(dir / (name + "." + a.format));
-    outputs.push_back(dir / (name + "_heatmap." + a.format));
+    output(name + "." + a.format);
+    output(name + "_heatmap." + a.format);
   }
-  for (const fs::path& path : outputs)
-    require(!same_file(a.input, path.string()), "--output",
-            "'" + path.string() + "' would overwrite the input file");
+  output("panel." + a.format);
+  for (const char* name : {"report.json", "report.md"}) output(name);
+  files.check();
 
   // The geometric lens, then the classic lenses matched to its measured zoom.
   const GeometricLens geometric(source.width, source.height, options);
@@ -465,25 +466,25 @@ int run_compare(const CompareArgs& a) {
   const std::string markdown = report_markdown(a, targets, zoom_requested, methods, eq7_total,
                                                double(source.width) * source.height);
 
-  // Every file is written to a temporary name and renamed into place.
-  if (!fs::exists(dir)) fs::create_directory(dir);
+  // Every output to a temporary file; all renamed into place once every one is written.
   const MipPyramid pyramid(source);
   RenderOptions render_options;
   render_options.width = source.width;
   render_options.height = source.height;
   for (const Method& m : methods) {
     const Image image = to_rgb(render(m.warp, pyramid, render_options));
-    save_image((dir / (m.name + "." + a.format)).string(), image, a.jpeg_quality);
+    save_image(files.staged((dir / (m.name + "." + a.format)).string()), image, a.jpeg_quality);
     save_image(
-        (dir / (m.name + "_heatmap." + a.format)).string(),
+        files.staged((dir / (m.name + "_heatmap." + a.format)).string()),
         with_legend(heatmap(m.warp, m.measures.conformal, m.measures.flipped, image, heat_max),
                     heat_max, m.name + ": shape distortion s1/s2 - 1"),
         a.jpeg_quality);
   }
-  save_image((dir / ("panel." + a.format)).string(),
+  save_image(files.staged((dir / ("panel." + a.format)).string()),
              make_panel(source, pyramid, methods, targets, heat_max, a.tile), a.jpeg_quality);
-  write_file((dir / "report.json").string(), report.dump(2) + "\n");
-  write_file((dir / "report.md").string(), markdown);
+  write_file(files.staged((dir / "report.json").string()), report.dump(2) + "\n");
+  write_file(files.staged((dir / "report.md").string()), markdown);
+  files.commit();
   return 0;
 }
 

@@ -29,7 +29,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args);
 /// and NAME_heatmap.FORMAT (its shape distortion with a scale), then panel.FORMAT (every method
 /// side by side around the lenses, labelled), report.json and report.md. With --sweep, one lens's
 /// footprint sweep instead (footprint_sweep.h): sweep.json, sweep.md and sweep.FORMAT. Returns
-/// the exit code; throws InvalidInput for bad input before writing anything.
+/// the exit code; throws InvalidInput for bad input (an output file that is a folder or an
+/// input among it) before any work, and renames the files into place only once all are written.
 int run_compare(const CompareArgs& args);
 
 }  // namespace geolens

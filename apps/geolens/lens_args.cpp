@@ -4,63 +4,9 @@
 #include <iostream>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
+#include "geolens/lens/lens_spec.h"
 
 namespace geolens::cli {
-
-namespace {
-
-double parse_number(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  require(!text.empty() && end == text.c_str() + text.size(), "--lens",
-          what + " '" + text + "' is not a number");
-  return value;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  size_t start = 0;
-  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1) {
-    parts.push_back(text.substr(start, at - start));
-  }
-  parts.push_back(text.substr(start));
-  return parts;
-}
-
-const char* kLensSyntax = "expected circle:CX,CY,R[:ZOOM], polygon:FILE[:ZOOM] or mask:FILE[:ZOOM]";
-
-std::vector<Region> parse_regions(const std::string& spec, std::string& zoom, const Image& source) {
-  const std::vector<std::string> parts = split(spec, ':');
-  require(parts.size() >= 2 && parts.size() <= 3, "--lens",
-          std::string(kLensSyntax) + ", got '" + spec + "'");
-  zoom = parts.size() == 3 ? parts[2] : "";
-  if (parts[0] == "circle") {
-    const std::vector<std::string> numbers = split(parts[1], ',');
-    require(numbers.size() == 3, "--lens", std::string(kLensSyntax) + ", got '" + spec + "'");
-    const double radius = parse_number(numbers[2], "radius");
-    require(std::isfinite(radius) && radius > 0, "--lens",
-            "radius must be a positive number, got '" + numbers[2] + "'");
-    return {Region::circle(
-        {parse_number(numbers[0], "centre x"), parse_number(numbers[1], "centre y")}, radius)};
-  }
-  if (parts[0] == "polygon") {
-    const std::vector<Eigen::Vector2d> vertices = read_polygon_file(parts[1]);
-    validate_polygon(vertices, "--lens");
-    return {Region::polygon(vertices)};
-  }
-  if (parts[0] == "mask") {
-    const Image mask = load_image(parts[1]);
-    require(mask.width == source.width && mask.height == source.height, "--lens",
-            "mask '" + parts[1] + "' is " + std::to_string(mask.width) + "x" +
-                std::to_string(mask.height) + " but the image is " + std::to_string(source.width) +
-                "x" + std::to_string(source.height));
-    return Region::from_mask(mask);
-  }
-  throw InvalidInput("--lens: " + std::string(kLensSyntax) + ", got '" + spec + "'");
-}
-
-}  // namespace
 
 void add_lens_options(CLI::App& c, LensArgs& a) {
   c.add_option("--lens", a.lenses,
@@ -132,14 +78,18 @@ std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
   const Profile profile = parse_profile(a.profile);
   std::vector<Lens> lenses;
   for (const std::string& spec : a.lenses) {
-    std::string zoom_text;
-    for (Region& region : parse_regions(spec, zoom_text, source)) {
-      const double zoom = zoom_text.empty() ? a.zoom : parse_number(zoom_text, "zoom");
-      lenses.push_back(Lens{std::move(region), zoom, profile, a.footprint});
-      validate_lens(lenses.back(), source.width, source.height);
-    }
+    for (Lens& lens :
+         parse_lens_spec(spec, a.zoom, profile, a.footprint, source.width, source.height))
+      lenses.push_back(std::move(lens));
   }
   return lenses;
+}
+
+std::vector<LensSpecFile> lens_files(const LensArgs& a) {
+  std::vector<LensSpecFile> files;
+  for (const std::string& spec : a.lenses)
+    if (const std::optional<LensSpecFile> file = lens_spec_file(spec)) files.push_back(*file);
+  return files;
 }
 
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {

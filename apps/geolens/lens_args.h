@@ -7,6 +7,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_spec.h"
 
 namespace geolens::cli {
 
@@ -28,11 +29,13 @@ void add_lens_options(CLI::App& command, LensArgs& args);
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.
 LensOptions parse_options(const LensArgs& args);
 
-/// The lenses, validated against `source`: `circle:CX,CY,R[:ZOOM]` (source pixels),
-/// `polygon:FILE[:ZOOM]`, `mask:FILE[:ZOOM]` (a PNG of the source's size; each 8-connected blob
-/// of non-zero pixels is one lens).
-/// Throws InvalidInput naming the offending --lens value.
+/// The lenses of every --lens value (parse_lens_spec, lens/lens_spec.h), validated against
+/// `source`. Throws InvalidInput naming the offending value.
 std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
+
+/// The files of the polygon:FILE and mask:FILE lenses, read from the values alone (a malformed
+/// value is left to parse_lenses to reject).
+std::vector<LensSpecFile> lens_files(const LensArgs& args);
 
 /// Prints a warning on stderr for each lens that does not fit where it is (the largest zoom
 /// that fits, for the focus model) or misses its requested zoom by more than 10 %.

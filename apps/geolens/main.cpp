@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -14,13 +13,13 @@
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
 #include "geolens/io/mesh_io.h"
+#include "geolens/io/run_files.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/render/render.h"
 #include "lens_args.h"
 #include "stats.h"
 
-namespace fs = std::filesystem;
 using namespace geolens;
 
 namespace {
@@ -42,14 +41,6 @@ std::pair<int, int> parse_size(const std::string& text) {
   const size_t x = text.find('x');
   require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
   return {side(text.substr(0, x)), side(text.substr(x + 1))};
-}
-
-// An output path must be in an existing folder and must not be the input.
-void check_output_path(const std::string& path, const std::string& input, const char* option) {
-  const fs::path parent = fs::path(path).parent_path();
-  require(parent.empty() || fs::is_directory(parent), option,
-          "folder '" + parent.string() + "' of '" + path + "' does not exist");
-  require(!same_file(input, path), option, "'" + path + "' is the input file");
 }
 
 // Draws the boundary of every lens region (scaled to the image), about 3 pixels wide, in red
@@ -104,15 +95,21 @@ int run_magnify(const MagnifyArgs& a) {
   // Validate everything before any work.
   require(is_writable_image_path(a.output), "--output",
           "'" + a.output + "' must end in .png, .jpg or .jpeg");
-  check_output_path(a.output, a.input, "--output");
-  if (!a.stats.empty()) check_output_path(a.stats, a.input, "--stats");
-  if (!a.export_mesh.empty())
-    check_output_path(a.export_mesh + "_3d.obj", a.input, "--export-mesh");
-  if (!a.before_after.empty()) {
+  if (!a.before_after.empty())
     require(is_writable_image_path(a.before_after), "--before-after",
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
-    check_output_path(a.before_after, a.input, "--before-after");
+  RunFiles files;
+  files.add_input("the input image", a.input);
+  for (const LensSpecFile& f : cli::lens_files(a.lens))
+    files.add_input("the --lens " + f.kind + " file", f.path);
+  files.add_output("--output", a.output);
+  if (!a.before_after.empty()) files.add_output("--before-after", a.before_after);
+  if (!a.export_mesh.empty()) {
+    files.add_output("--export-mesh", a.export_mesh + "_3d.obj");
+    files.add_output("--export-mesh", a.export_mesh + "_flat.obj");
   }
+  if (!a.stats.empty()) files.add_output("--stats", a.stats);
+  files.check();
   const LensOptions options = cli::parse_options(a.lens);
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
@@ -138,23 +135,25 @@ int run_magnify(const MagnifyArgs& a) {
   const double render_ms =
       std::chrono::duration<double, std::milli>(Clock::now() - render_start).count();
 
-  save_image(a.output, output);
+  // Every output to a temporary file; all renamed into place once every one is written.
+  save_image(files.staged(a.output), output);
   if (!a.before_after.empty()) {
     Image before =
         render(identity_warp(lens.grid(), source.width, source.height), pyramid, render_options);
     outline_lenses(before, lenses, double(width) / source.width, double(height) / source.height);
-    save_image(a.before_after, before_after(before, output));
+    save_image(files.staged(a.before_after), before_after(before, output));
   }
   if (!a.export_mesh.empty()) {
-    write_obj(a.export_mesh + "_3d.obj", result.lifted, result.mesh.F);
-    write_obj(a.export_mesh + "_flat.obj", result.flat, result.mesh.F);
+    write_obj(files.staged(a.export_mesh + "_3d.obj"), result.lifted, result.mesh.F);
+    write_obj(files.staged(a.export_mesh + "_flat.obj"), result.flat, result.mesh.F);
   }
   if (!a.stats.empty()) {
     const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     const nlohmann::json stats =
         cli::make_stats(lenses, options, result, distortion, render_ms, total_ms);
-    write_file(a.stats, stats.dump(2) + "\n");
+    write_file(files.staged(a.stats), stats.dump(2) + "\n");
   }
+  files.commit();
   return 0;
 }
 

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "geolens/core/errors.h"
 #include "geolens/lens/focus_lens.h"
+#include "geolens/warp/warp_map.h"
 
 namespace geolens {
 
@@ -24,19 +26,6 @@ std::pair<size_t, double> nearest_lens(const std::vector<Lens>& lenses, const Ei
     if (d < distance) best = k, distance = d;
   }
   return {best, distance};
-}
-
-// The triangle whose source contains p, or -1.
-Eigen::Index containing_triangle(const WarpMesh& warp, const Eigen::Vector2d& p) {
-  for (Eigen::Index f = 0; f < warp.F.rows(); ++f) {
-    const Eigen::Vector2d a = warp.source.row(warp.F(f, 0)), b = warp.source.row(warp.F(f, 1)),
-                          c = warp.source.row(warp.F(f, 2));
-    auto side = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-      return (v - u).x() * (p - u).y() - (v - u).y() * (p - u).x() >= 0;
-    };
-    if (side(a, b) && side(b, c) && side(c, a)) return f;
-  }
-  return -1;
 }
 
 }  // namespace
@@ -79,10 +68,12 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     out[k].displacement_beyond_footprint = std::max(
         out[k].displacement_beyond_footprint, (warp.screen.row(v) - warp.source.row(v)).norm());
   }
+  std::optional<WarpMap> map;  // built when a region needs it
   for (size_t k = 0; k < n; ++k) {
     if (focus_area[k] == 0) {
       // A region smaller than the mesh's triangles: the one under its peak.
-      const Eigen::Index f = containing_triangle(warp, lenses[k].region.peak());
+      if (!map) map.emplace(warp);
+      const Eigen::Index f = map->source_triangle(lenses[k].region.peak());
       require(f >= 0, "measure_foci",
               "lens " + std::to_string(k + 1) + "'s peak lies in no triangle of the warp");
       focus_area[k] = 1;

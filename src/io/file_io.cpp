@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "geolens/core/errors.h"
 
@@ -11,29 +14,41 @@ namespace geolens {
 
 namespace fs = std::filesystem;
 
-void write_file(const std::string& path, const std::string& content) {
-  const std::string temporary = path + ".tmp-" + std::to_string(getpid());
+void write_file(const std::string& path, const void* data, size_t size) {
+  static std::atomic<unsigned> counter{0};
+  const std::string temporary =
+      path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  std::string reason;
+  if (std::FILE* file = std::fopen(temporary.c_str(), "wb")) {
+    if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);
+    if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
+  } else {
+    reason = std::strerror(errno);
+  }
   std::error_code error;
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << content;
-    out.flush();
-    if (!out) {
-      fs::remove(temporary, error);
-      throw IoError("write_file: cannot write '" + path + "'");
-    }
+  if (reason.empty()) {
+    fs::rename(temporary, path, error);
+    if (error) reason = error.message();
   }
-  fs::rename(temporary, path, error);
-  if (error) {
+  if (!reason.empty()) {
     fs::remove(temporary, error);
-    throw IoError("write_file: cannot write '" + path + "'");
+    throw IoError("write_file: cannot write '" + path + "': " + reason);
   }
+}
+
+void write_file(const std::string& path, const std::string& content) {
+  write_file(path, content.data(), content.size());
 }
 
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code error;
-  if (fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
-  return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+  if (fs::exists(a, error) && fs::exists(b, error) && fs::equivalent(a, b, error)) return true;
+  // Not (both) there yet: compare the absolute, normalized paths ("out.png" and "./out.png",
+  // "d/../x" and "x"); weakly_canonical resolves the part that exists.
+  const fs::path x = fs::weakly_canonical(fs::absolute(a, error), error);
+  if (error) return false;
+  const fs::path y = fs::weakly_canonical(fs::absolute(b, error), error);
+  return !error && x == y;
 }
 
 }  // namespace geolens

@@ -1,10 +1,5 @@
 #include "geolens/io/image.h"
 
-#include <stb_image.h>
-#include <stb_image_write.h>
-#include <unistd.h>
-
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +9,8 @@
 #include <system_error>
 
 #include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+#include "io/codecs.h"
 
 namespace geolens {
 
@@ -41,54 +38,46 @@ Format format_of(const std::string& path) {
   return Format::kUnknown;
 }
 
-/// Encodes `image` in memory, so that writing the file can be checked byte for byte.
-std::vector<uint8_t> encode(const Image& image, Format format, int jpeg_quality) {
+// The whole file, or the reason it cannot be read.
+std::vector<uint8_t> read_bytes(const std::string& path, std::string& reason) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
   std::vector<uint8_t> bytes;
-  auto append = [](void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<uint8_t>*>(context);
-    const auto* begin = static_cast<const uint8_t*>(data);
-    out->insert(out->end(), begin, begin + size);
-  };
-  int ok = 0;
-  if (format == Format::kPng) {
-    ok = stbi_write_png_to_func(append, &bytes, image.width, image.height, image.channels,
-                                image.pixels.data(), image.width * image.channels);
-  } else {
-    // JPEG has no alpha: the encoder reads grey or RGB and skips the alpha byte.
-    ok = stbi_write_jpg_to_func(append, &bytes, image.width, image.height, image.channels,
-                                image.pixels.data(), jpeg_quality);
+  if (!file) {
+    reason = std::strerror(errno);
+    return bytes;
   }
-  if (!ok) throw IoError("save_image: the encoder failed");
+  uint8_t chunk[1 << 16];
+  for (size_t n; (n = std::fread(chunk, 1, sizeof chunk, file.get())) > 0;)
+    bytes.insert(bytes.end(), chunk, chunk + n);
+  if (std::ferror(file.get())) reason = std::strerror(errno);
   return bytes;
 }
 
-/// Writes `bytes` to `path`; returns an empty string on success, else the reason.
-std::string write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) return std::strerror(errno);
+Image decode(const std::string& path, codecs::Depth depth, const char* function) {
   std::string reason;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())
-    reason = std::strerror(errno);
-  if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
-  return reason;
+  const std::vector<uint8_t> bytes = read_bytes(path, reason);
+  auto fail = [&](const std::string& why) {
+    return InvalidInput(std::string(function) + ": cannot read '" + path + "': " + why);
+  };
+  if (!reason.empty()) throw fail(reason);
+  try {
+    if (codecs::is_png(bytes)) return codecs::decode_png(bytes, depth);
+    if (codecs::is_jpeg(bytes)) return codecs::decode_jpeg(bytes, depth);
+  } catch (const codecs::CodecError& e) {
+    throw fail(e.what());
+  }
+  throw fail(bytes.empty() ? "the file is empty" : "not a PNG or JPEG file");
 }
 
 }  // namespace
 
 Image load_image(const std::string& path) {
-  auto fail = [&](const std::string& reason) {
-    return InvalidInput("load_image: cannot read '" + path + "': " + reason);
-  };
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                       &std::fclose);
-  if (!file) throw fail(std::strerror(errno));
-  int width = 0, height = 0, channels = 0;
-  std::unique_ptr<uint8_t, void (*)(void*)> data(
-      stbi_load_from_file(file.get(), &width, &height, &channels, 0), &stbi_image_free);
-  if (!data) throw fail(stbi_failure_reason());
-  Image image(width, height, channels);
-  std::memcpy(image.pixels.data(), data.get(), image.pixels.size());
-  return image;
+  return decode(path, codecs::Depth::kRound, "load_image");
+}
+
+Image load_mask(const std::string& path) {
+  return decode(path, codecs::Depth::kNonZero, "load_mask");
 }
 
 void save_image(const std::string& path, const Image& image, int jpeg_quality) {
@@ -112,20 +101,14 @@ void save_image(const std::string& path, const Image& image, int jpeg_quality) {
   require(parent.empty() || fs::is_directory(parent, ec), "save_image",
           "folder '" + parent.string() + "' of '" + path + "' does not exist");
 
-  const std::vector<uint8_t> bytes = encode(image, format, jpeg_quality);
-  // Unique per process and per call, so concurrent saves of the same path do not collide.
-  static std::atomic<unsigned> counter{0};
-  const std::string temp =
-      path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  std::string reason = write_file(temp, bytes);
-  if (reason.empty()) {
-    fs::rename(temp, path, ec);
-    if (ec) reason = ec.message();
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = format == Format::kPng ? codecs::encode_png(image)
+                                   : codecs::encode_jpeg(image, jpeg_quality);
+  } catch (const codecs::CodecError& e) {
+    throw IoError("save_image: cannot encode '" + path + "': " + e.what());
   }
-  if (!reason.empty()) {
-    fs::remove(temp, ec);
-    throw IoError("save_image: cannot write '" + path + "': " + reason);
-  }
+  write_file(path, bytes.data(), bytes.size());
 }
 
 bool is_writable_image_path(const std::string& path) { return format_of(path) != Format::kUnknown; }

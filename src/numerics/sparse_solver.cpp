@@ -4,6 +4,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/numerics/windowed_cholesky.h"
 
 namespace geolens {
 

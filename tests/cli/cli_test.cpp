@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "geolens/io/image.h"
@@ -52,6 +54,30 @@ class Cli : public testing::ScratchFolderTest {
     EXPECT_FALSE(fs::exists(path("stats.json")));
     for (const auto& entry : fs::directory_iterator(dir_))
       EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+  // Every file under the scratch folder but the captured stderr, with its bytes.
+  std::map<std::string, std::string> files() const {
+    std::map<std::string, std::string> contents;
+    for (const auto& entry : fs::recursive_directory_iterator(dir_)) {
+      if (!entry.is_regular_file() || entry.path() == path("stderr.txt")) continue;
+      std::ifstream in(entry.path(), std::ios::binary);
+      std::stringstream bytes;
+      bytes << in.rdbuf();
+      contents[entry.path().string()] = bytes.str();
+    }
+    return contents;
+  }
+
+  // Outputs that clash: exit 2, exactly one line naming the problem, and every file as it was
+  // (no output written, no input touched, no temporary left).
+  void expect_refused(const std::string& arguments, const std::string& mentions) {
+    SCOPED_TRACE(arguments);
+    const std::map<std::string, std::string> before = files();
+    const CliRun r = run(arguments);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
+    EXPECT_TRUE(files() == before) << r.err;
   }
 };
 
@@ -113,6 +139,90 @@ TEST_F(Cli, RejectsBadPolygonsAndMasks) {
   save_image(path("small.png"), Image(100, 100, 1, 255));
   expect_rejected("magnify " + in + out + " --lens mask:" + path("small.png"), "100x100");
   expect_rejected("magnify " + in + out + " --lens mask:" + path("none.png"), "none.png");
+}
+
+// Every output of a run is checked before any work: none is an existing folder, none names the
+// same file as another (however spelled) or as any input (the image, polygon and mask files).
+TEST_F(Cli, RefusesOutputsThatClashBeforeAnyWork) {
+  const std::string in = path("in.png"), lens = " --lens circle:128,96,40";
+  const std::string magnify = "magnify " + in + lens;
+  fs::create_directories(path("folder.png"));
+  fs::create_directories(path("folder.json"));
+  expect_refused(magnify + " -o " + path("folder.png"),
+                 "--output: '" + path("folder.png") + "' is an existing folder");
+  expect_refused(magnify + " -o " + path("out.png") + " --stats " + path("folder.json"),
+                 "--stats: '" + path("folder.json") + "' is an existing folder");
+  expect_refused(magnify + " -o " + path("out.png") + " --before-after " + path("folder.png"),
+                 "--before-after: '" + path("folder.png") + "' is an existing folder");
+  expect_refused(magnify + " -o " + path("out.png") + " --stats " + path("out.png"),
+                 "--stats: '" + path("out.png") + "' is the same file as --output");
+  expect_refused(magnify + " -o " + path("out.png") + " --before-after " + path("./out.png"),
+                 "--before-after: '" + path("./out.png") + "' is the same file as --output");
+  expect_refused(magnify + " -o " + path("out.png") + " --export-mesh " + path("m") + " --stats " +
+                     path("folder.json/../m_flat.obj"),
+                 "is the same file as --export-mesh '" + path("m_flat.obj") + "'");
+  {  // Relative to the working folder, where "out.png" and "./out.png" spell one new file.
+    const fs::path cwd = fs::current_path();
+    fs::current_path(dir_);
+    expect_refused("magnify in.png" + lens + " -o out.png --before-after ./out.png",
+                   "--before-after: './out.png' is the same file as --output 'out.png'");
+    expect_refused("magnify in.png" + lens + " -o out.png --export-mesh m --stats m_3d.obj",
+                   "--stats: 'm_3d.obj' is the same file as --export-mesh 'm_3d.obj'");
+    expect_refused("magnify ./in.png" + lens + " -o in.png",
+                   "--output: 'in.png' would overwrite the input image './in.png'");
+    fs::current_path(cwd);
+  }
+  expect_refused("magnify " + in + " -o " + path("./in.png") + lens,
+                 "--output: '" + path("./in.png") + "' would overwrite the input image");
+  std::ofstream(path("poly.txt")) << "100 60\n160 60\n160 130\n100 130\n";
+  std::ofstream(path("m_flat.obj")) << "100 60\n160 60\n160 130\n100 130\n";
+  Image mask(256, 192, 1, 0);
+  for (int y = 80; y < 110; ++y)
+    for (int x = 110; x < 150; ++x) *mask.at(x, y) = 255;
+  save_image(path("mask.png"), mask);
+  expect_refused("magnify " + in + " -o " + path("mask.png") + " --lens mask:" + path("mask.png"),
+                 "--output: '" + path("mask.png") + "' would overwrite the --lens mask file");
+  expect_refused("magnify " + in + " -o " + path("out.png") + " --stats " + path("poly.txt") +
+                     " --lens polygon:" + path("poly.txt"),
+                 "--stats: '" + path("poly.txt") + "' would overwrite the --lens polygon file");
+  expect_refused(
+      "magnify " + in + " -o " + path("out.png") + " --export-mesh " + path("m") +
+          " --lens polygon:" + path("m_flat.obj") + ":2",
+      "--export-mesh: '" + path("m_flat.obj") + "' would overwrite the --lens polygon file");
+}
+
+// A run that fails after the work (here the stats cannot be written: nothing can be created in
+// /proc, not even by root) leaves none of its outputs behind.
+TEST_F(Cli, FailureAfterTheWorkLeavesNoOutput) {
+  if (!fs::is_directory("/proc/self")) GTEST_SKIP() << "no /proc";
+  const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.png") + " --before-after " +
+                       path("both.png") + " --export-mesh " + path("m") +
+                       " --lens circle:128,96,30:1.5 --stats /proc/geolens_stats.json");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("geolens: failed: write_file: cannot write '/proc/geolens_stats"),
+            std::string::npos)
+      << r.err;
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir_)) left.push_back(entry.path().string());
+  EXPECT_EQ(left.size(), 2u);  // in.png and stderr.txt
+  for (const std::string& f : left)
+    EXPECT_TRUE(f == path("in.png") || f == path("stderr.txt")) << f;
+}
+
+// A run that succeeds writes every output, each where it was asked, and no temporary file.
+TEST_F(Cli, SuccessfulRunWritesEveryOutput) {
+  fs::create_directories(path("sub"));
+  const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.png") + " --before-after " +
+                       path("sub/both.jpg") + " --export-mesh " + path("sub/m") + " --stats " +
+                       path("stats.json") + " --lens circle:128,96,40 --mesh 40");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(load_image(path("out.png")).width, 256);
+  EXPECT_EQ(load_image(path("sub/both.jpg")).width, 256 + 8 + 256);
+  for (const char* name : {"sub/m_3d.obj", "sub/m_flat.obj", "stats.json"})
+    EXPECT_GT(fs::file_size(path(name)), 0u) << name;
+  for (const auto& entry : fs::recursive_directory_iterator(dir_))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
 // A thresholded photograph's object (the cup rim, thin and wide parts) magnified as a whole.

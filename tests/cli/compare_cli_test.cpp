@@ -209,7 +209,8 @@ TEST_F(CompareCli, ZoomOneIsTheIdentityForEveryMethod) {
                        " --format jpg --tile 64 --baseline-mesh 60");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(fs::path(out) / "panel.jpg"));
-  for (const nlohmann::json& m : report(out).at("methods")) {
+  const nlohmann::json methods = report(out).at("methods");
+  for (const nlohmann::json& m : methods) {
     SCOPED_TRACE(m.at("name").get<std::string>());
     EXPECT_NEAR(m.at("zoom_center").get<double>(), 1, 1e-9);
     EXPECT_NEAR(m.at("focus_uniformity").get<double>(), 1, 1e-9);
@@ -281,6 +282,34 @@ TEST_F(CompareCli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   fs::create_directories(path("empty"));
   expect_rejected("compare " + in + " -o " + path("empty") + lens + " --alpha 2", "alpha",
                   path("empty"));
+}
+
+// An output file that is an existing folder, or that is an input (here a polygon file in the
+// output folder under an output's name), is refused before any work; nothing changes.
+TEST_F(CompareCli, RefusesOutputsThatClashBeforeAnyWork) {
+  write_input("in.png", 200);
+  const std::string in = path("in.png"), out = path("out");
+  fs::create_directories(out + "/panel.png");
+  const CliRun folder = run("compare " + in + " -o " + out + " --lens circle:100,100,50:2");
+  EXPECT_EQ(folder.code, 2) << folder.err;
+  EXPECT_EQ(std::count(folder.err.begin(), folder.err.end(), '\n'), 1) << folder.err;
+  EXPECT_NE(folder.err.find("--output: '" + out + "/panel.png' is an existing folder"),
+            std::string::npos)
+      << folder.err;
+  fs::remove(out + "/panel.png");
+  const std::string polygon = "50 50\n150 50\n150 130\n50 130\n";
+  std::ofstream(out + "/report.md") << polygon;
+  const CliRun input = run("compare " + path("in.png") + " --lens polygon:" + out +
+                           "/./report.md:2" + " -o " + out + "/");
+  EXPECT_EQ(input.code, 2) << input.err;
+  EXPECT_EQ(std::count(input.err.begin(), input.err.end(), '\n'), 1) << input.err;
+  EXPECT_NE(input.err.find("would overwrite the --lens polygon file"), std::string::npos)
+      << input.err;
+  std::ifstream kept(out + "/report.md");
+  std::stringstream text;
+  text << kept.rdbuf();
+  EXPECT_EQ(text.str(), polygon);
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
 }
 
 TEST_F(CompareCli, HelpSucceeds) { EXPECT_EQ(run("compare --help").code, 0); }

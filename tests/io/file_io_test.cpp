@@ -47,6 +47,73 @@ TEST_F(FileIo, SameFileSeesThroughSpellings) {
   EXPECT_TRUE(same_file(path, (dir_ / "folder" / ".." / "b.txt").string()));
   EXPECT_TRUE(same_file((dir_ / "new.txt").string(), (dir_ / "." / "new.txt").string()));
   EXPECT_FALSE(same_file(path, (dir_ / "c.txt").string()));
+  // Relative spellings of a file that does not exist yet, from the working folder.
+  const fs::path here = fs::current_path();
+  fs::current_path(dir_);
+  EXPECT_TRUE(same_file("out.png", "./out.png"));
+  EXPECT_TRUE(same_file("out.png", (dir_ / "out.png").string()));
+  EXPECT_FALSE(same_file("out.png", "other.png"));
+  fs::current_path(here);
+}
+
+}  // namespace
+}  // namespace geolens
+
+#include "geolens/io/run_files.h"
+
+namespace geolens {
+namespace {
+
+using RunFilesTest = testing::ScratchFolderTest;
+
+// Outputs reach their paths only at commit(); a run abandoned before leaves nothing.
+TEST_F(RunFilesTest, OutputsAppearOnlyWhenTheRunCommits) {
+  const std::string a = (dir_ / "a.txt").string(), b = (dir_ / "b.txt").string();
+  {
+    RunFiles files;
+    files.add_output("-o", a);
+    files.add_output("--stats", b);
+    files.check();
+    write_file(files.staged(a), "1");
+    EXPECT_FALSE(fs::exists(a));  // abandoned here
+  }
+  EXPECT_TRUE(fs::is_empty(dir_));
+  RunFiles files;
+  files.add_output("-o", a);
+  files.add_output("--stats", b);
+  files.check();
+  write_file(files.staged(a), "1");
+  write_file(files.staged(b), "2");
+  files.commit();
+  std::ifstream in(a);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "1");
+  EXPECT_TRUE(fs::exists(b));
+}
+
+TEST_F(RunFilesTest, ClashesAreRefusedBeforeAnyWork) {
+  const std::string in = (dir_ / "in.png").string();
+  write_file(in, "x");
+  fs::create_directory(dir_ / "folder");
+  auto refused = [&](const std::vector<std::pair<std::string, std::string>>& outputs) {
+    RunFiles files;
+    files.add_input("the input image", in);
+    for (const auto& [option, path] : outputs) files.add_output(option, path);
+    try {
+      files.check();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused({{"-o", in}}).find("would overwrite the input image"), std::string::npos);
+  EXPECT_NE(refused({{"-o", (dir_ / "o.png").string()}, {"--stats", (dir_ / "./o.png").string()}})
+                .find("is the same file as -o"),
+            std::string::npos);
+  EXPECT_NE(refused({{"-o", (dir_ / "folder").string()}}).find("is an existing folder"),
+            std::string::npos);
+  EXPECT_NE(refused({{"-o", (dir_ / "missing" / "o.png").string()}}).find("does not exist"),
+            std::string::npos);
+  EXPECT_EQ(refused({{"-o", (dir_ / "o.png").string()}}), "");
 }
 
 }  // namespace

@@ -209,3 +209,104 @@ TEST_F(ImageFileTest, FailedWriteThrowsIoErrorAndLeavesNoTemporary) {
   EXPECT_EQ(entries(), std::vector<std::string>{"taken.png"});
   EXPECT_TRUE(fs::is_directory(dir_ / "taken.png"));
 }
+
+namespace {
+
+// A PNG written here from its specification (stored deflate blocks, CRC-32, Adler-32), so the
+// decoder is tested on files no geolens encoder made: 16-bit samples, palettes, damaged streams.
+uint32_t crc32(const std::string& bytes) {
+  uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+std::string big_endian(uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
+
+std::string chunk(const std::string& type, const std::string& data) {
+  return big_endian(uint32_t(data.size())) + type + data + big_endian(crc32(type + data));
+}
+
+// A zlib stream of one stored block holding `raw`; `block_type` 3 makes it invalid (reserved).
+std::string zlib_stored(const std::string& raw, int block_type = 0) {
+  uint32_t a = 1, b = 0;
+  for (unsigned char c : raw) a = (a + c) % 65521, b = (b + a) % 65521;
+  const uint16_t n = uint16_t(raw.size());
+  std::string out = "\x78\x01";
+  out += char(1 | (block_type << 1));  // final block
+  out += {char(n & 0xff), char(n >> 8), char(~n & 0xff), char((~n >> 8) & 0xff)};
+  return out + raw + big_endian((b << 16) | a);
+}
+
+// A width x height PNG of `depth` bits and colour type `colour` whose scanlines (filter byte 0
+// each) hold `samples` big-endian; extra chunks (PLTE, tRNS) before IDAT.
+std::string png(int width, int height, int depth, int colour, const std::vector<int>& samples,
+                const std::string& extra = "", int block_type = 0) {
+  const int per_pixel = std::vector<int>{1, 0, 3, 1, 2, 0, 4}[size_t(colour)];
+  std::string raw;
+  size_t next = 0;
+  for (int y = 0; y < height; ++y) {
+    raw += '\0';
+    for (int i = 0; i < width * per_pixel; ++i) {
+      const int v = samples[next++];
+      if (depth == 16) raw += char(v >> 8);
+      raw += char(v & 0xff);
+    }
+  }
+  const std::string ihdr = big_endian(uint32_t(width)) + big_endian(uint32_t(height)) +
+                           char(depth) + char(colour) + std::string(3, '\0');
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + extra +
+         chunk("IDAT", zlib_stored(raw, block_type)) + chunk("IEND", "");
+}
+
+}  // namespace
+
+TEST_F(ImageFileTest, SixteenBitPngIsReadAtItsDepth) {
+  // A 16-bit grey mask of values 0 and 1 - 255: rounded to 8 bits it would be all 0 and 1.
+  write_bytes(path("mask16.png"), png(4, 1, 16, 0, {0, 1, 255, 65535}));
+  const Image mask = geolens::load_mask(path("mask16.png"));
+  ASSERT_EQ(mask.channels, 1);
+  EXPECT_EQ(mask.pixels, (std::vector<uint8_t>{0, 255, 255, 255}));
+  const Image picture = geolens::load_image(path("mask16.png"));
+  EXPECT_EQ(picture.pixels, (std::vector<uint8_t>{0, 0, 1, 255}));  // v * 255 / 65535, rounded
+  // 16-bit RGB keeps its channels, each rounded.
+  write_bytes(path("rgb16.png"), png(1, 1, 16, 2, {65535, 32896, 257}));
+  EXPECT_EQ(geolens::load_image(path("rgb16.png")).pixels, (std::vector<uint8_t>{255, 128, 1}));
+}
+
+TEST_F(ImageFileTest, PaletteWithTransparencyBecomesRgba) {
+  const std::string plte = chunk("PLTE", std::string("\x10\x20\x30\xf0\xe0\xd0", 6));
+  const std::string trns = chunk("tRNS", std::string("\x00", 1));  // entry 0 transparent
+  write_bytes(path("palette.png"), png(2, 1, 8, 3, {0, 1}, plte + trns));
+  const Image image = geolens::load_image(path("palette.png"));
+  ASSERT_EQ(image.channels, 4);
+  EXPECT_EQ(image.pixels, (std::vector<uint8_t>{0x10, 0x20, 0x30, 0, 0xf0, 0xe0, 0xd0, 255}));
+}
+
+TEST_F(ImageFileTest, DamagedFilesAreRefusedWithOneLineNamingTheFileAndTheFault) {
+  auto message = [&](const std::string& file) {
+    try {
+      geolens::load_image(path(file));
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // A deflate block of the reserved type 3 (stb answered with an exception from std::string).
+  write_bytes(path("reserved.png"), png(2, 2, 8, 0, {1, 2, 3, 4}, "", 3));
+  const std::string reserved = message("reserved.png");
+  EXPECT_EQ(reserved.rfind("load_image: cannot read '" + path("reserved.png") + "': PNG", 0), 0u)
+      << reserved;
+  EXPECT_EQ(reserved.find('\n'), std::string::npos);
+  // A JPEG cut short is refused, not completed with grey.
+  geolens::save_image(path("whole.jpg"), gradient(64, 64, 3));
+  std::ifstream in(path("whole.jpg"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_bytes(path("cut.jpg"), bytes.substr(0, bytes.size() * 2 / 3));
+  EXPECT_NE(message("cut.jpg").find("JPEG"), std::string::npos) << message("cut.jpg");
+  // Neither format: said so.
+  write_bytes(path("text.png"), "hello");
+  EXPECT_NE(message("text.png").find("not a PNG or JPEG file"), std::string::npos);
+}

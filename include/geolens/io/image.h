@@ -1,5 +1,5 @@
 #pragma once
-// 8-bit images in memory, PNG and JPEG files in and out.
+// 8-bit images in memory, PNG and JPEG files in and out (the codecs: src/io/*_codec.cpp).
 
 #include <cstdint>
 #include <string>
@@ -23,15 +23,22 @@ struct Image {
   }
 };
 
-/// Reads a PNG or JPEG file (any format stb_image decodes). Throws InvalidInput naming the path
-/// and the decoder's reason when the file is missing, unreadable or corrupt.
+/// Reads a PNG (libspng: any colour type and depth; palette to RGB(A), transparency to alpha) or
+/// a JPEG (libjpeg-turbo: grey or RGB), recognized by content, not by extension. 16-bit samples
+/// are rounded to 8 bits. Throws InvalidInput naming the path and what is wrong when the file is
+/// missing, unreadable, corrupt (a damaged JPEG is refused, not decoded with made-up pixels) or
+/// larger than 65536 px a side.
 Image load_image(const std::string& path);
 
-/// Writes `image` as PNG or JPEG, chosen by the extension (.png, .jpg, .jpeg; case-insensitive).
-/// Writes to a temporary file in the same folder and renames it into place, so `path` is never
-/// left partial. Throws InvalidInput for an unknown extension or a missing folder, IoError when
-/// writing fails. `jpeg_quality` in [1, 100]. JPEG has no alpha: it is dropped, and the file is
-/// always 3-channel colour (a grey image reads back as 3 equal channels).
+/// Reads a mask: like load_image, but the first channel is 255 wherever the file's sample is
+/// non-zero at its own depth and 0 elsewhere (so a 16-bit mask of values 1 - 255 is not empty).
+Image load_mask(const std::string& path);
+
+/// Writes `image` as PNG (libspng, a fast compression setting) or JPEG (libjpeg-turbo), chosen by
+/// the extension (.png, .jpg, .jpeg; case-insensitive), through write_file (file_io.h), so
+/// `path` is never left partial. Throws InvalidInput for an unknown extension or a missing folder,
+/// IoError when writing fails. `jpeg_quality` in [1, 100]. JPEG has no alpha: it is dropped, and
+/// the file is always 3-channel colour (a grey image reads back as 3 equal channels).
 void save_image(const std::string& path, const Image& image, int jpeg_quality = 92);
 
 /// True when the extension of `path` is one save_image can write.

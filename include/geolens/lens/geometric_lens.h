@@ -12,12 +12,13 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/geometry/subdivide.h"
 #include "geolens/lens/flatten.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/lens/lift.h"
 #include "geolens/lens/texture_map.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
+
+struct FocusField;  // focus_lens.h
 
 /// Which part of the image takes part in the solve.
 enum class Extent {

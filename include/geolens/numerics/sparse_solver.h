@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "geolens/numerics/windowed_cholesky.h"
-
 namespace geolens {
+
+class WindowedCholesky;  // windowed_cholesky.h
 
 /// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
 /// A_ff x_f = b_f - A_fc x_c, A symmetric positive semidefinite (n x n), A_ff positive

@@ -2,6 +2,7 @@
 // CPU renderer: draws a WarpMesh, sampling the source through a mip pyramid.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "geolens/io/image.h"

@@ -1,0 +1,55 @@
+#pragma once
+// The files one run of a tool reads and writes: checked against each other before any work, the
+// outputs written to temporary files and renamed into place only once every one is written.
+
+#include <string>
+#include <vector>
+
+namespace geolens {
+
+/// Add the inputs, folders and outputs, check(), do the work, write each output to staged(path),
+/// then commit(); a run that throws before commit() leaves no output behind. Used by the CLI;
+/// any face that writes several files per action (the viewer's exports) wants the same.
+class RunFiles {
+ public:
+  RunFiles() = default;
+  RunFiles(const RunFiles&) = delete;
+  RunFiles& operator=(const RunFiles&) = delete;
+  /// Removes every temporary file, and every folder staged() made, unless commit() ran.
+  ~RunFiles();
+
+  /// A file the run reads (`role`: "the input image", ...); no output may be it.
+  void add_input(const std::string& role, const std::string& path);
+  /// A folder given by `option` that holds outputs, made by staged() if it is missing.
+  void add_folder(const std::string& option, const std::string& path);
+  /// A file given by `option` that the run writes.
+  void add_output(const std::string& option, const std::string& path);
+
+  /// Throws InvalidInput naming the option and the path when a folder exists as a file or its
+  /// parent is missing, or an output is an existing folder, is in a missing folder that is not
+  /// an added one, is the same file as an input or is the same file as another output.
+  void check() const;
+
+  /// The temporary file to write the output `path` to: in its folder, with its extension (the
+  /// image format). Makes the added folders that are missing. Throws std::logic_error if `path`
+  /// was not added.
+  std::string staged(const std::string& path);
+
+  /// Renames every temporary file into place, one by one (an output renamed before a later one
+  /// fails stays). Throws IoError naming the output that failed.
+  void commit();
+
+ private:
+  struct Named {
+    std::string option, path;  // for an input, its role
+  };
+  struct Output {
+    std::string option, path, temporary;
+  };
+  std::vector<Named> inputs_, folders_;
+  std::vector<Output> outputs_;
+  std::vector<std::string> made_;  // folders staged() made
+  bool committed_ = false;
+};
+
+}  // namespace geolens

@@ -1,0 +1,33 @@
+#pragma once
+// Lenses written as text, the form the CLI's --lens takes (and the viewer and Python next):
+// `circle:CX,CY,R[:ZOOM]` (source pixels), `polygon:FILE[:ZOOM]` (one 'x y' vertex per line) or
+// `mask:FILE[:ZOOM]` (an image of the source's size; each 8-connected blob of non-zero pixels,
+// at the file's bit depth, is one lens).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geolens/lens/lift.h"
+
+namespace geolens {
+
+/// The syntax, for messages: "circle:CX,CY,R[:ZOOM], polygon:FILE[:ZOOM] or mask:FILE[:ZOOM]".
+extern const char* const kLensSpecSyntax;
+
+/// The lenses `spec` names (several for a mask of several blobs), each with the spec's zoom or
+/// `default_zoom`, `profile` and `footprint`, validated for a width x height source
+/// (validate_lens). Reads the polygon or mask file. Throws InvalidInput naming the spec and what
+/// is wrong with it.
+std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, Profile profile,
+                                  double footprint, int width, int height);
+
+/// A file a spec reads: `kind` "polygon" or "mask", `path` its FILE.
+struct LensSpecFile {
+  std::string kind, path;
+};
+/// The file `spec` reads, from the text alone (none for a circle or a malformed spec, which
+/// parse_lens_spec rejects): so a tool can check its outputs against it before any work.
+std::optional<LensSpecFile> lens_spec_file(const std::string& spec);
+
+}  // namespace geolens

@@ -1,0 +1,89 @@
+#include "geolens/lens/lens_spec.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "geolens/core/errors.h"
+#include "geolens/geometry/polygon.h"
+#include "geolens/io/image.h"
+
+namespace geolens {
+
+const char* const kLensSpecSyntax =
+    "circle:CX,CY,R[:ZOOM], polygon:FILE[:ZOOM] or mask:FILE[:ZOOM]";
+
+namespace {
+
+constexpr const char* kFunction = "parse_lens_spec";
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
+    parts.push_back(text.substr(start, at - start));
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+double parse_number(const std::string& text, const std::string& what, const std::string& spec) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  require(!text.empty() && end == text.c_str() + text.size(), kFunction,
+          what + " '" + text + "' in '" + spec + "' is not a number");
+  return value;
+}
+
+std::vector<Region> parse_regions(const std::vector<std::string>& parts, const std::string& spec,
+                                  int width, int height) {
+  if (parts[0] == "circle") {
+    const std::vector<std::string> numbers = split(parts[1], ',');
+    require(numbers.size() == 3, kFunction,
+            std::string("expected ") + kLensSpecSyntax + ", got '" + spec + "'");
+    const double radius = parse_number(numbers[2], "radius", spec);
+    require(std::isfinite(radius) && radius > 0, kFunction,
+            "radius must be a positive number, got '" + numbers[2] + "' in '" + spec + "'");
+    return {Region::circle(
+        {parse_number(numbers[0], "centre x", spec), parse_number(numbers[1], "centre y", spec)},
+        radius)};
+  }
+  if (parts[0] == "polygon") {
+    const std::vector<Eigen::Vector2d> vertices = read_polygon_file(parts[1]);
+    validate_polygon(vertices, kFunction);
+    return {Region::polygon(vertices)};
+  }
+  if (parts[0] == "mask") {
+    const Image mask = load_mask(parts[1]);
+    require(mask.width == width && mask.height == height, kFunction,
+            "mask '" + parts[1] + "' is " + std::to_string(mask.width) + "x" +
+                std::to_string(mask.height) + " but the image is " + std::to_string(width) + "x" +
+                std::to_string(height));
+    return Region::from_mask(mask);
+  }
+  throw InvalidInput(std::string(kFunction) + ": expected " + kLensSpecSyntax + ", got '" + spec +
+                     "'");
+}
+
+}  // namespace
+
+std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, Profile profile,
+                                  double footprint, int width, int height) {
+  const std::vector<std::string> parts = split(spec, ':');
+  require(parts.size() >= 2 && parts.size() <= 3, kFunction,
+          std::string("expected ") + kLensSpecSyntax + ", got '" + spec + "'");
+  const double zoom = parts.size() == 3 ? parse_number(parts[2], "zoom", spec) : default_zoom;
+  std::vector<Lens> lenses;
+  for (Region& region : parse_regions(parts, spec, width, height)) {
+    lenses.push_back(Lens{std::move(region), zoom, profile, footprint});
+    validate_lens(lenses.back(), width, height);
+  }
+  return lenses;
+}
+
+std::optional<LensSpecFile> lens_spec_file(const std::string& spec) {
+  const std::vector<std::string> parts = split(spec, ':');
+  if (parts.size() >= 2 && parts.size() <= 3 && (parts[0] == "polygon" || parts[0] == "mask"))
+    return LensSpecFile{parts[0], parts[1]};
+  return std::nullopt;
+}
+
+}  // namespace geolens

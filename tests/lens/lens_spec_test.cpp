@@ -1,0 +1,67 @@
+#include "geolens/lens/lens_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/image.h"
+#include "support/scratch_folder.h"
+
+namespace geolens {
+namespace {
+
+using LensSpec = testing::ScratchFolderTest;
+
+TEST_F(LensSpec, CircleWithAndWithoutZoom) {
+  const std::vector<Lens> a =
+      parse_lens_spec("circle:50,60,20:3", 2, Profile::kGaussian, 0, 200, 100);
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(a[0].region.kind(), RegionKind::kCircle);
+  EXPECT_EQ(a[0].region.peak(), Eigen::Vector2d(50, 60));
+  EXPECT_EQ(a[0].region.size(), 20);
+  EXPECT_EQ(a[0].zoom, 3);
+  EXPECT_EQ(parse_lens_spec("circle:50,60,20", 2.5, Profile::kGaussian, 5, 200, 100)[0].zoom, 2.5);
+  EXPECT_EQ(parse_lens_spec("circle:50,60,20", 2.5, Profile::kGaussian, 5, 200, 100)[0].footprint,
+            5);
+  EXPECT_FALSE(lens_spec_file("circle:50,60,20").has_value());
+}
+
+TEST_F(LensSpec, PolygonAndMaskFilesAreRead) {
+  const std::string polygon = path("p.txt");
+  std::ofstream(polygon) << "10 10\n90 10\n90 50\n10 50\n";
+  const std::vector<Lens> p =
+      parse_lens_spec("polygon:" + polygon + ":2", 2, Profile::kGaussian, 0, 200, 100);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].region.kind(), RegionKind::kPolygon);
+  EXPECT_EQ(lens_spec_file("polygon:" + polygon + ":2")->path, polygon);
+  // Two blobs, one lens each.
+  Image mask(200, 100, 1);
+  for (int y = 10; y < 30; ++y)
+    for (int x = 10; x < 30; ++x) mask.at(x, y)[0] = mask.at(x + 100, y + 50)[0] = 1;
+  save_image(path("m.png"), mask);
+  EXPECT_EQ(parse_lens_spec("mask:" + path("m.png"), 2, Profile::kGaussian, 0, 200, 100).size(),
+            2u);
+  EXPECT_EQ(lens_spec_file("mask:" + path("m.png"))->kind, "mask");
+}
+
+TEST_F(LensSpec, BadSpecsNameWhatIsWrong) {
+  auto message = [](const std::string& spec) {
+    try {
+      parse_lens_spec(spec, 2, Profile::kGaussian, 0, 200, 100);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("square:1,2,3").find("expected circle:CX,CY,R"), std::string::npos);
+  EXPECT_NE(message("circle:1,2").find("expected"), std::string::npos);
+  EXPECT_NE(message("circle:50,50,0").find("radius"), std::string::npos);
+  EXPECT_NE(message("circle:50,x,10").find("centre y 'x'"), std::string::npos);
+  EXPECT_NE(message("circle:50,50,10:big").find("zoom 'big'"), std::string::npos);
+  EXPECT_NE(message("circle:500,50,10").find("outside"), std::string::npos);
+  EXPECT_NE(message("polygon:" + path("missing.txt")).find("missing.txt"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace geolens
