@@ -23,6 +23,7 @@
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/measure/distortion_regions.h"
+#include "geolens/render/annotate.h"
 #include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
 
@@ -84,38 +85,6 @@ WarpMesh framed(const WarpMesh& warp, const Eigen::Vector2d& origin, double side
   return out;
 }
 
-void outline_circle(Image& image, const Eigen::Vector2d& center, double radius) {
-  const int steps = int(4 * std::numbers::pi * radius) + 16;
-  for (int s = 0; s < steps; ++s) {
-    const double angle = 2 * std::numbers::pi * s / steps;
-    for (double dr : {-0.5, 0.5}) {
-      const int x = int(std::floor(center.x() + (radius + dr) * std::cos(angle)));
-      const int y = int(std::floor(center.y() + (radius + dr) * std::sin(angle)));
-      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
-      uint8_t* p = image.at(x, y);
-      p[0] = 220;
-      p[1] = 30;
-      p[2] = 30;
-    }
-  }
-}
-
-Image to_rgb(const Image& image) {
-  if (image.channels == 3) return image;
-  Image out(image.width, image.height, 3);
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const uint8_t* p = image.at(x, y);
-      for (int c = 0; c < 3; ++c) out.at(x, y)[c] = image.channels < 3 ? p[0] : p[c];
-    }
-  return out;
-}
-
-void paste(Image& target, const Image& tile, int left, int top) {
-  for (int y = 0; y < tile.height; ++y)
-    std::copy_n(tile.at(0, y), size_t(tile.width) * 3, target.at(left, top + y));
-}
-
 // Input, then every method: a cell each (four label lines, the output, its heatmap), four cells
 // per row, the colour scale below. Every picture shows the same square around the lenses.
 Image make_panel(const Image& source, const MipPyramid& pyramid, const std::vector<Method>& methods,
@@ -137,17 +106,11 @@ Image make_panel(const Image& source, const MipPyramid& pyramid, const std::vect
   options.width = options.height = tile;
   const std::array<uint8_t, 3> ink = {20, 20, 20};
 
-  WarpMesh identity;
-  identity.F.resize(2, 3);
-  identity.F << 0, 1, 2, 0, 2, 3;
-  identity.source.resize(4, 2);
-  identity.source << 0, 0, source.width, 0, source.width, source.height, 0, source.height;
-  identity.screen = identity.source;
-  identity.screen_width = source.width;
-  identity.screen_height = source.height;
+  const WarpMesh identity = identity_warp(source.width, source.height);
   Image input = to_rgb(render(framed(identity, origin, side, tile), pyramid, options));
-  for (const CircleLens& lens : lenses)
-    outline_circle(input, (lens.center - origin) * (tile / side), lens.radius * tile / side);
+  std::vector<Region> circles;
+  for (const CircleLens& lens : lenses) circles.push_back(Region::circle(lens.center, lens.radius));
+  outline_regions(input, circles, origin, tile / side, tile / side);
 
   for (size_t cell = 0; cell <= methods.size(); ++cell) {
     const int left = gap + int(cell % columns) * cell_width;

@@ -10,15 +10,16 @@
 
 #include "compare.h"
 #include "geolens/core/errors.h"
+#include "geolens/eval/run_stats.h"
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
 #include "geolens/io/mesh_io.h"
 #include "geolens/io/run_files.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/render/annotate.h"
 #include "geolens/render/render.h"
 #include "lens_args.h"
-#include "stats.h"
 
 using namespace geolens;
 
@@ -43,52 +44,6 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {side(text.substr(0, x)), side(text.substr(x + 1))};
 }
 
-// Draws the boundary of every lens region (scaled to the image), about 3 pixels wide, in red
-// (grey on grey images): the pixels with a pixel of the other side within 1 pixel.
-void outline_lenses(Image& image, const std::vector<Lens>& lenses, double scale_x, double scale_y) {
-  const int w = image.width, h = image.height;
-  std::vector<char> inside(size_t(w) * size_t(h));
-  const uint8_t red[4] = {220, 30, 30, 255};
-  for (const Lens& lens : lenses) {
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        inside[size_t(y) * size_t(w) + size_t(x)] =
-            lens.region.depth({(x + 0.5) / scale_x, (y + 0.5) / scale_y}) > 0;
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const char here = inside[size_t(y) * size_t(w) + size_t(x)];
-        bool edge = false;
-        for (int dy = -1; dy <= 1 && !edge; ++dy)
-          for (int dx = -1; dx <= 1 && !edge; ++dx) {
-            const int u = x + dx, v = y + dy;
-            edge = u >= 0 && v >= 0 && u < w && v < h &&
-                   inside[size_t(v) * size_t(w) + size_t(u)] != here;
-          }
-        if (!edge) continue;
-        uint8_t* p = image.at(x, y);
-        for (int c = 0; c < image.channels; ++c) p[c] = image.channels < 3 ? 80 : red[c];
-      }
-    }
-  }
-}
-
-// Input (with the lens outlines) and output side by side, 8 pixels apart.
-Image before_after(const Image& before, const Image& after) {
-  const int gap = 8;
-  Image out(before.width + gap + after.width, std::max(before.height, after.height), after.channels,
-            255);
-  for (int y = 0; y < before.height; ++y)
-    std::copy_n(before.at(0, y), size_t(before.width) * before.channels, out.at(0, y));
-  for (int y = 0; y < after.height; ++y)
-    std::copy_n(after.at(0, y), size_t(after.width) * after.channels,
-                out.at(before.width + gap, y));
-  return out;
-}
-
-WarpMesh identity_warp(const Grid& grid, int width, int height) {
-  return WarpMesh{grid.F, grid.V, grid.V, width, height};
-}
-
 int run_magnify(const MagnifyArgs& a) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
@@ -111,13 +66,25 @@ int run_magnify(const MagnifyArgs& a) {
   if (!a.stats.empty()) files.add_output("--stats", a.stats);
   files.check();
   const LensOptions options = cli::parse_options(a.lens);
+  // Each part of the run timed from the end of the one before (RunTimings, eval/run_stats.h).
+  RunTimings timings;
+  auto mark = Clock::now();
+  auto lap = [&] {
+    const auto now = Clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - mark).count();
+    mark = now;
+    return ms;
+  };
+  lap();
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
   const auto [width, height] =
       a.size.empty() ? std::pair{source.width, source.height} : parse_size(a.size);
+  timings.load = lap();
 
   const GeometricLens lens(source.width, source.height, options);
   const LensResult result = lens.solve(lenses);
+  lap();
   cli::warn_about_zooms(lenses, result);
   const DistortionSummary distortion = summarize(measure_triangles(result.warp));
   if (distortion.flipped > 0) {
@@ -125,33 +92,35 @@ int run_magnify(const MagnifyArgs& a) {
               << " triangles are flipped (folded); try --texture cotan, a lower zoom or a finer "
                  "--mesh\n";
   }
+  timings.measure = lap();
 
-  const auto render_start = Clock::now();
   const MipPyramid pyramid(source);
   RenderOptions render_options;
   render_options.width = width;
   render_options.height = height;
   const Image output = render(result.warp, pyramid, render_options);
-  const double render_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - render_start).count();
+  Image before;
+  if (!a.before_after.empty()) {
+    before = render(identity_warp(source.width, source.height), pyramid, render_options);
+    std::vector<Region> regions;
+    for (const Lens& l : lenses) regions.push_back(l.region);
+    outline_regions(before, regions, Eigen::Vector2d::Zero(), double(width) / source.width,
+                    double(height) / source.height);
+  }
+  timings.render = lap();
 
   // Every output to a temporary file; all renamed into place once every one is written.
   save_image(files.staged(a.output), output);
-  if (!a.before_after.empty()) {
-    Image before =
-        render(identity_warp(lens.grid(), source.width, source.height), pyramid, render_options);
-    outline_lenses(before, lenses, double(width) / source.width, double(height) / source.height);
-    save_image(files.staged(a.before_after), before_after(before, output));
-  }
+  if (!a.before_after.empty())
+    save_image(files.staged(a.before_after), side_by_side(before, output));
   if (!a.export_mesh.empty()) {
     write_obj(files.staged(a.export_mesh + "_3d.obj"), result.lifted, result.mesh.F);
     write_obj(files.staged(a.export_mesh + "_flat.obj"), result.flat, result.mesh.F);
   }
+  timings.save = lap();
   if (!a.stats.empty()) {
-    const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    const nlohmann::json stats =
-        cli::make_stats(lenses, options, result, distortion, render_ms, total_ms);
-    write_file(files.staged(a.stats), stats.dump(2) + "\n");
+    timings.total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    write_file(files.staged(a.stats), run_stats_json(lenses, options, result, distortion, timings));
   }
   files.commit();
   return 0;

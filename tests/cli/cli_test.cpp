@@ -289,8 +289,19 @@ TEST_F(Cli, StatsHoldEveryField) {
   }
   EXPECT_GE(s.at("distortion").at("conformal_max").get<double>(),
             s.at("distortion").at("conformal_mean").get<double>());
-  for (const char* stage : {"lift", "texture", "factorize", "iterate", "render", "total"})
-    EXPECT_GE(s.at("timings_ms").at(stage).get<double>(), 0) << stage;
+  const auto& t = s.at("timings_ms");
+  for (const char* stage : {"load", "lift", "texture", "factorize", "iterate", "solve", "measure",
+                            "render", "save", "other", "total"})
+    EXPECT_GE(t.at(stage).get<double>(), 0) << stage;
+  // The total is the sum of its parts, loading and saving included; the solve holds its stages.
+  double parts = 0;
+  for (const char* part : {"load", "solve", "measure", "render", "save", "other"})
+    parts += t.at(part).get<double>();
+  EXPECT_NEAR(parts, t.at("total").get<double>(), 1e-9 * parts);
+  EXPECT_GT(t.at("load").get<double>(), 0);
+  EXPECT_GT(t.at("save").get<double>(), 0);
+  EXPECT_LE(t.at("lift").get<double>() + t.at("iterate").get<double>(),
+            t.at("solve").get<double>());
 }
 
 // With plain cotan weights, the rigid metric and a free boundary, the flattening minimizes the

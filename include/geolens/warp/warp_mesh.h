@@ -16,4 +16,8 @@ struct WarpMesh {
   int screen_height = 0;    ///< output height, pixels
 };
 
+/// The identity on a width x height source (two triangles), framed at the source's size: what
+/// a picture of the source without any lens is rendered through.
+WarpMesh identity_warp(int width, int height);
+
 }  // namespace geolens

@@ -1,13 +1,16 @@
-#include "stats.h"
+#include "geolens/eval/run_stats.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "geolens/eval/focus_measure.h"
 #include "geolens/lens/focus_lens.h"
 
-namespace geolens::cli {
+namespace geolens {
 
-nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& options,
-                          const LensResult& result, const DistortionSummary& summary,
-                          double render_ms, double total_ms) {
+std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& options,
+                           const LensResult& result, const DistortionSummary& summary,
+                           const RunTimings& timings) {
   nlohmann::json stats;
   stats["vertices"] = result.warp.source.rows();
   stats["triangles"] = result.warp.F.rows();
@@ -64,13 +67,20 @@ nlohmann::json make_stats(const std::vector<Lens>& lenses, const LensOptions& op
   stats["lenses"] = list;
   stats["distortion"] = {{"conformal_mean", summary.conformal_mean},
                          {"conformal_max", summary.conformal_max}};
-  stats["timings_ms"] = {{"lift", result.timings.lift},
+  const double parts =
+      timings.load + result.timings.total + timings.measure + timings.render + timings.save;
+  stats["timings_ms"] = {{"load", timings.load},
+                         {"lift", result.timings.lift},
                          {"texture", result.timings.texture},
                          {"factorize", result.timings.factorize},
                          {"iterate", result.timings.iterate},
-                         {"render", render_ms},
-                         {"total", total_ms}};
-  return stats;
+                         {"solve", result.timings.total},
+                         {"measure", timings.measure},
+                         {"render", timings.render},
+                         {"save", timings.save},
+                         {"other", std::max(0.0, timings.total - parts)},
+                         {"total", std::max(timings.total, parts)}};
+  return stats.dump(2) + "\n";
 }
 
-}  // namespace geolens::cli
+}  // namespace geolens
