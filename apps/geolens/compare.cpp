@@ -328,8 +328,7 @@ int run_compare(const CompareArgs& a) {
           "must be in [1, 100], got " + std::to_string(a.jpeg_quality));
   require(a.tile >= 64 && a.tile <= 1024, "--tile",
           "must be in [64, 1024], got " + std::to_string(a.tile));
-  require(a.baseline_mesh >= 4 && a.baseline_mesh <= 1000, "--baseline-mesh",
-          "must be in [4, 1000], got " + std::to_string(a.baseline_mesh));
+  require_mesh_vertices(a.baseline_mesh, "--baseline-mesh");
   require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
           "must be >= 0, got " + std::to_string(a.heat_max));
   RunFiles files;

@@ -277,11 +277,6 @@ WarpMesh evaluate(ClassicLens kind, const PlaneMesh& mesh, const std::vector<Cir
   return warp;
 }
 
-void require_mesh_size(int vertices_long_side, const char* function) {
-  require(vertices_long_side >= 4 && vertices_long_side <= 1000, function,
-          "mesh must be in [4, 1000] vertices per side, got " + std::to_string(vertices_long_side));
-}
-
 }  // namespace
 
 PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
@@ -313,7 +308,7 @@ PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
 
 WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, double width,
                       double height, int vertices_long_side) {
-  require_mesh_size(vertices_long_side, "classic_warp");
+  require_mesh_vertices(vertices_long_side, "classic_warp");
   validate_lenses(lenses, width, height, "classic_warp");
   return evaluate(kind, ringed_grid(width, height, vertices_long_side, lens_rings(lenses)), lenses,
                   width, height);
@@ -322,7 +317,7 @@ WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, d
 MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
                                       const std::vector<double>& measure_radius, double width,
                                       double height, int vertices_long_side) {
-  require_mesh_size(vertices_long_side, "match_classic_lens");
+  require_mesh_vertices(vertices_long_side, "match_classic_lens");
   validate_lenses(targets, width, height, "match_classic_lens");
   require(measure_radius.size() == targets.size(), "match_classic_lens",
           "need one measure radius per lens");

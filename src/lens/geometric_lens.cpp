@@ -154,8 +154,7 @@ std::string to_string(LensModel model) {
 void validate(const LensOptions& o) {
   require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
-  require(o.mesh >= 4 && o.mesh <= 1000, "validate",
-          "mesh must be in [4, 1000] vertices per side, got " + std::to_string(o.mesh));
+  require_mesh_vertices(o.mesh, "validate");
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");

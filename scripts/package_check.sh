@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# Checks geolens as an installed package: builds it shared and static (Release, no tests, no
+# benchmarks), installs each into a prefix of its own, then builds examples/consumer against each
+# prefix twice, with find_package(geolens CONFIG) and with pkg-config alone, runs the four
+# programs and the installed CLI, and checks that all four print the same. Assumes
+# scripts/setup.sh has installed the packages; everything is built in a temporary folder, removed
+# at the end (GEOLENS_PACKAGE_KEEP=1 keeps it). Stops at the first error, naming the step.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+jobs=$(nproc)
+work=$(mktemp -d "${TMPDIR:-/tmp}/geolens-package.XXXXXX")
+if [ "${GEOLENS_PACKAGE_KEEP:-0}" = 1 ]; then
+  echo "keeping $work"
+else
+  trap 'rm -rf "$work"' EXIT
+fi
+
+step() { echo "== $*"; }
+fail() {
+  echo "package_check: FAILED: $*" >&2
+  exit 1
+}
+# Runs a command quietly, its output kept in $work/<name>.log and shown if it fails.
+run() {
+  local name=$1
+  shift
+  if ! "$@" >"$work/$name.log" 2>&1; then
+    tail -n 40 "$work/$name.log" >&2
+    fail "$name: $*"
+  fi
+}
+
+for kind in shared static; do
+  prefix=$work/prefix-$kind
+  shared=$([ "$kind" = shared ] && echo ON || echo OFF)
+  step "$kind: build and install into $prefix"
+  # Configured for the default prefix and installed elsewhere: both package files must relocate.
+  run "configure-$kind" cmake -S "$root" -B "$work/build-$kind" -DCMAKE_BUILD_TYPE=Release \
+    -DBUILD_SHARED_LIBS="$shared" -DGEOLENS_BUILD_TESTS=OFF -DGEOLENS_BUILD_BENCH=OFF
+  run "build-$kind" cmake --build "$work/build-$kind" --target geolens_cli -j"$jobs"
+  run "install-$kind" cmake --install "$work/build-$kind" --prefix "$prefix"
+  "$prefix/bin/geolens" --version >/dev/null || fail "$kind: the installed CLI does not run"
+
+  step "$kind: consumer with find_package(geolens CONFIG)"
+  run "consumer-cmake-$kind" cmake -S "$root/examples/consumer" -B "$work/consumer-$kind" \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix"
+  grep -q "^geolens_DIR:PATH=$prefix/" "$work/consumer-$kind/CMakeCache.txt" ||
+    fail "$kind: find_package found a geolens outside $prefix"
+  run "consumer-cmake-build-$kind" cmake --build "$work/consumer-$kind" -j"$jobs"
+  "$work/consumer-$kind/consumer" | tee "$work/out-cmake-$kind.txt" ||
+    fail "$kind: the find_package consumer failed"
+
+  step "$kind: consumer with pkg-config"
+  export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+  query=(pkg-config --cflags --libs)
+  if [ "$kind" = static ]; then query+=(--static); fi
+  flags=$("${query[@]}" geolens) || fail "$kind: ${query[*]} geolens"
+  echo "${query[*]} geolens: $flags"
+  libdir=$(pkg-config --variable=libdir geolens)
+  # shellcheck disable=SC2086  # the flags are words
+  run "consumer-pkg-config-$kind" g++ -std=c++20 -O2 "$root/examples/consumer/main.cpp" \
+    -o "$work/consumer-pc-$kind" $flags -Wl,-rpath,"$libdir"
+  "$work/consumer-pc-$kind" | tee "$work/out-pc-$kind.txt" ||
+    fail "$kind: the pkg-config consumer failed"
+  unset PKG_CONFIG_PATH
+
+  # The shared consumers load the installed library; the static ones need none.
+  for exe in "$work/consumer-$kind/consumer" "$work/consumer-pc-$kind"; do
+    libraries=$(ldd "$exe")
+    if [ "$kind" = shared ]; then
+      grep -q "libgeolens\.so.* => $prefix/" <<<"$libraries" ||
+        fail "$exe does not load libgeolens.so from $prefix"
+    elif grep -q libgeolens <<<"$libraries"; then
+      fail "$exe loads a shared libgeolens"
+    fi
+  done
+done
+
+step "the four consumers agree"
+for out in "$work"/out-*.txt; do
+  cmp -s "$out" "$work/out-cmake-shared.txt" || fail "$(basename "$out") differs from out-cmake-shared.txt"
+done
+step "installed (shared prefix)"
+(cd "$work/prefix-shared" && find . -type f -o -type l | sort | grep -v '^./include/geolens/.*\.h$')
+echo "and $(find "$work/prefix-shared/include/geolens" -name '*.h' | wc -l) headers in include/geolens/"
+echo "package_check: OK"
