@@ -18,18 +18,8 @@ std::array<uint8_t, 3> pixel(const Image& image, int x, int y) {
 }
 
 // Two triangles splitting a w x h screen along its diagonal from (0, 0) to (w, h): triangle 0
-// above it (top-right), triangle 1 below (bottom-left).
-WarpMesh two_triangles(int w, int h) {
-  WarpMesh mesh;
-  mesh.F.resize(2, 3);
-  mesh.F << 0, 1, 2, 0, 2, 3;
-  mesh.source.resize(4, 2);
-  mesh.source << 0, 0, w, 0, w, h, 0, h;
-  mesh.screen = mesh.source;
-  mesh.screen_width = w;
-  mesh.screen_height = h;
-  return mesh;
-}
+// above it (top-right), triangle 1 below (bottom-left); the identity_warp.
+WarpMesh two_triangles(int w, int h) { return identity_warp(w, h); }
 
 TEST(Heatmap, ScaleRunsFromBlueToRedAndClamps) {
   const auto blue = heat_colour(0), red = heat_colour(1);
