@@ -18,6 +18,10 @@ struct CodecError : std::runtime_error {
 /// or 255 wherever the first channel is non-zero and 0 elsewhere (masks, at the file's depth).
 enum class Depth { kRound, kNonZero };
 
+/// The largest image decoded: 2^28 pixels (16384 x 16384; 1 GiB as RGBA), so a header that
+/// claims more is refused before any allocation.
+constexpr uint64_t kMaxPixels = uint64_t(1) << 28;
+
 bool is_png(const std::vector<uint8_t>& bytes);
 bool is_jpeg(const std::vector<uint8_t>& bytes);
 

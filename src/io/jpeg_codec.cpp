@@ -65,6 +65,12 @@ Image decode_jpeg(const std::vector<uint8_t>& bytes, Depth depth) {
     std::snprintf(errors.message, sizeof errors.message, "CMYK JPEG is not supported");
     std::longjmp(errors.jump, 1);
   }
+  if (uint64_t(info.image_width) * info.image_height > kMaxPixels) {
+    std::snprintf(errors.message, sizeof errors.message,
+                  "%u x %u pixels is more than geolens reads (2^28)", info.image_width,
+                  info.image_height);
+    std::longjmp(errors.jump, 1);
+  }
   info.out_color_space = info.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;
   jpeg_start_decompress(&info);
   Image& out = *image;

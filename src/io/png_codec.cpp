@@ -37,6 +37,9 @@ Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
   check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "PNG");
   spng_ihdr ihdr{};
   check(spng_get_ihdr(ctx.get(), &ihdr), "PNG header");
+  if (uint64_t(ihdr.width) * ihdr.height > kMaxPixels)
+    throw CodecError("PNG: " + std::to_string(ihdr.width) + " x " + std::to_string(ihdr.height) +
+                     " pixels is more than geolens reads (2^28)");
   spng_trns trns{};
   const bool has_trns = spng_get_trns(ctx.get(), &trns) == 0;
   int channels = 4;

@@ -306,6 +306,13 @@ TEST_F(ImageFileTest, DamagedFilesAreRefusedWithOneLineNamingTheFileAndTheFault)
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   write_bytes(path("cut.jpg"), bytes.substr(0, bytes.size() * 2 / 3));
   EXPECT_NE(message("cut.jpg").find("JPEG"), std::string::npos) << message("cut.jpg");
+  // A header claiming 20000 x 20000 pixels is refused before anything is allocated.
+  const std::string huge =
+      big_endian(20000) + big_endian(20000) + char(8) + char(2) + std::string(3, '\0');
+  write_bytes(path("huge.png"), std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", huge) +
+                                    chunk("IDAT", zlib_stored("")) + chunk("IEND", ""));
+  EXPECT_NE(message("huge.png").find("more than geolens reads"), std::string::npos)
+      << message("huge.png");
   // Neither format: said so.
   write_bytes(path("text.png"), "hello");
   EXPECT_NE(message("text.png").find("not a PNG or JPEG file"), std::string::npos);

@@ -27,7 +27,7 @@ struct Image {
 /// a JPEG (libjpeg-turbo: grey or RGB), recognized by content, not by extension. 16-bit samples
 /// are rounded to 8 bits. Throws InvalidInput naming the path and what is wrong when the file is
 /// missing, unreadable, corrupt (a damaged JPEG is refused, not decoded with made-up pixels) or
-/// larger than 65536 px a side.
+/// larger than 2^28 pixels (16384 x 16384), refused from its header before any allocation.
 Image load_image(const std::string& path);
 
 /// Reads a mask: like load_image, but the first channel is 255 wherever the file's sample is
