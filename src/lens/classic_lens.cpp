@@ -221,7 +221,7 @@ std::vector<Ring> lens_rings(const std::vector<CircleLens>& lenses) {
 constexpr double kOnRim = 1e-9;
 
 // Evaluates the lens on the ringed screen mesh.
-WarpMesh evaluate(ClassicLens kind, const PlaneMesh& mesh, const std::vector<CircleLens>& lenses,
+WarpMesh evaluate(ClassicLens kind, const PlanarMesh& mesh, const std::vector<CircleLens>& lenses,
                   double width, double height) {
   WarpMesh warp;
   warp.screen_width = int(std::lround(width));
@@ -279,8 +279,8 @@ WarpMesh evaluate(ClassicLens kind, const PlaneMesh& mesh, const std::vector<Cir
 
 }  // namespace
 
-PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
-                      const std::vector<Ring>& rings) {
+PlanarMesh ringed_grid(double width, double height, int vertices_long_side,
+                       const std::vector<Ring>& rings) {
   for (const Ring& ring : rings)
     require(ring.center.allFinite() && std::isfinite(ring.radius) && ring.radius > 0, "ringed_grid",
             "ring centre must be finite and radius > 0");
@@ -298,9 +298,15 @@ PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
     snap_to_ring(V, F, locked, ring, 0.2 * grid.cell);
     split_along_ring(V, F, locked, ring);
   }
-  PlaneMesh mesh;
+  PlanarMesh mesh;
   mesh.V.resize(Eigen::Index(V.size()), 2);
-  for (size_t i = 0; i < V.size(); ++i) mesh.V.row(Eigen::Index(i)) = V[i].transpose();
+  mesh.sides.assign(V.size(), 0);
+  for (size_t i = 0; i < V.size(); ++i) {
+    mesh.V.row(Eigen::Index(i)) = V[i].transpose();
+    const Eigen::Vector2d& p = V[i];
+    mesh.sides[i] = uint8_t((p.x() == 0 ? kLeft : 0) | (p.x() == width ? kRight : 0) |
+                            (p.y() == 0 ? kTop : 0) | (p.y() == height ? kBottom : 0));
+  }
   mesh.F.resize(Eigen::Index(F.size()), 3);
   for (size_t f = 0; f < F.size(); ++f) mesh.F.row(Eigen::Index(f)) << F[f][0], F[f][1], F[f][2];
   return mesh;
@@ -325,7 +331,7 @@ MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<Circle
     require(std::isfinite(radius) && radius > 0, "match_classic_lens",
             "measure radius must be finite and > 0, got " + std::to_string(radius));
   // The rings do not depend on the zoom, so one mesh serves every build.
-  const PlaneMesh mesh = ringed_grid(width, height, vertices_long_side, lens_rings(targets));
+  const PlanarMesh mesh = ringed_grid(width, height, vertices_long_side, lens_rings(targets));
   const size_t n = targets.size();
   std::vector<CircleLens> lenses = targets;
   // Per lens, the previous (log z, log measured - log target) for the secant step.

@@ -207,15 +207,8 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
       rings.push_back({lens.region.peak() - box.min(), lens.region.size()});
     for (const FocusGroup& g : focus_groups(lenses))
       rings.push_back({g.centre - box.min(), g.reach + g.margin});
-    const PlaneMesh ringed = ringed_grid(box.sizes().x(), box.sizes().y(), options_.mesh, rings);
-    patch.V = ringed.V;
-    patch.F = ringed.F;
-    patch.sides.assign(size_t(patch.V.rows()), 0);
-    for (Eigen::Index i = 0; i < patch.V.rows(); ++i) {
-      const Eigen::Vector2d p = patch.V.row(i);
-      patch.sides[size_t(i)] = (p.x() == 0 ? kLeft : 0) | (p.x() == box.sizes().x() ? kRight : 0) |
-                               (p.y() == 0 ? kTop : 0) | (p.y() == box.sizes().y() ? kBottom : 0);
-    }
+    static_cast<PlanarMesh&>(patch) =
+        ringed_grid(box.sizes().x(), box.sizes().y(), options_.mesh, rings);
   }
   patch.V.rowwise() += box.min().transpose();
   return patch;

@@ -70,7 +70,7 @@ TEST(Baselines, SarkarBrownInverseInvertsG) {
 TEST(Baselines, RingedGridFollowsEveryRingAndCoversTheImage) {
   // One ring well inside, one crossing the top-left corner of the image.
   const std::vector<Ring> rings = {{{200, 150}, 37.5}, {{200, 150}, 75}, {{20, 30}, 60}};
-  const PlaneMesh mesh = ringed_grid(400, 300, 120, rings);
+  const PlanarMesh mesh = ringed_grid(400, 300, 120, rings);
   double area = 0;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const double a = signed_area(mesh.V, mesh.F, f);
@@ -91,6 +91,19 @@ TEST(Baselines, RingedGridFollowsEveryRingAndCoversTheImage) {
   EXPECT_LE(mesh.V.col(0).maxCoeff(), 400);
   EXPECT_GE(mesh.V.col(1).minCoeff(), 0);
   EXPECT_LE(mesh.V.col(1).maxCoeff(), 300);
+  // The sides flags mark exactly the vertices on the image's sides, the ring's crossings of
+  // the top and left sides among them.
+  ASSERT_EQ(mesh.sides.size(), size_t(mesh.V.rows()));
+  int on_sides = 0;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+    const double x = mesh.V(i, 0), y = mesh.V(i, 1);
+    const uint8_t expected = uint8_t((x == 0 ? kLeft : 0) | (x == 400 ? kRight : 0) |
+                                     (y == 0 ? kTop : 0) | (y == 300 ? kBottom : 0));
+    EXPECT_EQ(mesh.sides[size_t(i)], expected) << i;
+    on_sides += expected != 0;
+  }
+  const Grid grid = make_grid(400, 300, 120);
+  EXPECT_EQ(on_sides, 2 * (grid.columns + grid.rows) - 4 + 2);  // + the ring's two crossings
 }
 
 TEST(Baselines, EveryLensAtZoomOneIsTheIdentity) {

@@ -36,7 +36,7 @@ WarpMesh affine_warp(const Grid& grid, const Eigen::Matrix2d& A, const Eigen::Ve
 TEST(DistortionRegions, ZonesHaveTheAreasOfTheirDisks) {
   const CircleLens lens{{300, 260}, 120, 2};
   EXPECT_DOUBLE_EQ(focus_radius(lens), 30);
-  const PlaneMesh mesh =
+  const PlanarMesh mesh =
       ringed_grid(600, 500, 150, {{lens.center, focus_radius(lens)}, {lens.center, lens.radius}});
   const WarpMesh warp = identity_warp(mesh.V, mesh.F, 600, 500);
   const RegionStatistics r = measure_regions(warp, measure_triangles(warp), {lens}, 600, 500);

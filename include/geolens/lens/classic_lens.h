@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "geolens/geometry/grid.h"
 #include "geolens/measure/distortion_regions.h"
 #include "geolens/warp/warp_mesh.h"
 
@@ -74,13 +75,6 @@ struct Ring {
   double radius;           ///< pixels, > 0
 };
 
-/// A triangle mesh of the rectangle [0, width] x [0, height]: positions and triangles,
-/// (b - a) x (c - a) > 0.
-struct PlaneMesh {
-  Eigen::MatrixX2d V;  ///< #V x 2, pixels
-  Eigen::MatrixX3i F;  ///< #F x 3
-};
-
 /// make_grid(width, height, vertices_long_side), then made to follow every ring: each ring in
 /// turn, grid vertices closer to it than 0.2 cell are moved onto it along the ray from its centre
 /// (image-border vertices and vertices already on an earlier ring stay), then every triangle
@@ -88,9 +82,9 @@ struct PlaneMesh {
 /// (one vertex per edge, shared by both triangles of the edge). Afterwards every vertex of a
 /// triangle lies on one side of each ring or on it, so a jump or a kink of a radial map at a ring
 /// is represented. Rings closer than about a cell to each other or to an image side give thin
-/// triangles but no crossing.
-PlaneMesh ringed_grid(double width, double height, int vertices_long_side,
-                      const std::vector<Ring>& rings);
+/// triangles but no crossing. The sides flags mark the vertices on the rectangle's sides.
+PlanarMesh ringed_grid(double width, double height, int vertices_long_side,
+                       const std::vector<Ring>& rings);
 
 /// The classic lens `kind` on a width x height source, as a WarpMesh framed at the source's
 /// size. The mesh is ringed_grid(width, height, vertices_long_side, rings at a r and r of every
