@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geolens/core/errors.h"
 
 namespace geolens {
@@ -89,28 +90,6 @@ Image downsample(const Image& fine) {
     }
   });
   return coarse;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Threads
-
-/// Runs work(i) for i in [0, count) on up to `threads` threads (the caller's included), handing
-/// out indices in order. `work` must not throw.
-template <class Work>
-void parallel_for(int count, int threads, const Work& work) {
-  threads = std::min(threads, count);
-  if (threads <= 1) {
-    for (int i = 0; i < count; ++i) work(i);
-    return;
-  }
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int i = next++; i < count; i = next++) work(i);
-  };
-  std::vector<std::jthread> pool;  // joined on destruction, also when a later spawn throws
-  pool.reserve(size_t(threads - 1));
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -519,32 +498,40 @@ Image render(const WarpMesh& mesh, const MipPyramid& source, const RenderOptions
   const int triangle_count = int(mesh.F.rows());
   std::vector<Triangle> triangles(static_cast<size_t>(triangle_count));
   constexpr int kChunk = 1024;
-  parallel_for((triangle_count + kChunk - 1) / kChunk, threads, [&](int chunk) {
-    const int end = std::min(triangle_count, (chunk + 1) * kChunk);
-    for (int f = chunk * kChunk; f < end; ++f)
-      triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
-  });
+  parallel_for_each(
+      size_t((triangle_count + kChunk - 1) / kChunk),
+      [&](size_t i) {
+        const int chunk = int(i);
+        const int end = std::min(triangle_count, (chunk + 1) * kChunk);
+        for (int f = chunk * kChunk; f < end; ++f)
+          triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
+      },
+      threads);
 
   Image out(width, height, C);
   const Target target{out.pixels.data(), width};
   // Horizontal bands, a few per thread for balance; each draws every triangle clipped to its
   // rows, in mesh order, so the result does not depend on the thread count.
   const int bands = threads == 1 ? 1 : std::min(height, 4 * threads);
-  parallel_for(bands, threads, [&](int band) {
-    const int row_begin = int(int64_t(height) * band / bands);
-    const int row_end = int(int64_t(height) * (band + 1) / bands);
-    with_channels(C, [&](auto channels) {
-      constexpr int kC = decltype(channels)::value;
-      uint8_t* band_pixels = out.at(0, row_begin);
-      const size_t band_size = size_t(row_end - row_begin) * size_t(width) * kC;
-      for (size_t i = 0; i < band_size; i += kC)
-        for (int k = 0; k < kC; ++k) band_pixels[i + k] = options.background[size_t(k)];
-      for (const Triangle& t : triangles)
-        if (t.row_begin < row_end && t.row_end > row_begin)
-          draw<kC>(t, source, std::max(row_begin, t.row_begin), std::min(row_end, t.row_end),
-                   target);
-    });
-  });
+  parallel_for_each(
+      size_t(bands),
+      [&](size_t index) {
+        const int band = int(index);
+        const int row_begin = int(int64_t(height) * band / bands);
+        const int row_end = int(int64_t(height) * (band + 1) / bands);
+        with_channels(C, [&](auto channels) {
+          constexpr int kC = decltype(channels)::value;
+          uint8_t* band_pixels = out.at(0, row_begin);
+          const size_t band_size = size_t(row_end - row_begin) * size_t(width) * kC;
+          for (size_t i = 0; i < band_size; i += kC)
+            for (int k = 0; k < kC; ++k) band_pixels[i + k] = options.background[size_t(k)];
+          for (const Triangle& t : triangles)
+            if (t.row_begin < row_end && t.row_end > row_begin)
+              draw<kC>(t, source, std::max(row_begin, t.row_begin), std::min(row_end, t.row_end),
+                       target);
+        });
+      },
+      threads);
   return out;
 }
 
