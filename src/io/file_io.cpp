@@ -14,10 +14,16 @@ namespace geolens {
 
 namespace fs = std::filesystem;
 
-void write_file(const std::string& path, const void* data, size_t size) {
+std::string temporary_path(const std::string& path) {
   static std::atomic<unsigned> counter{0};
-  const std::string temporary =
-      path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  const fs::path p(path);
+  return (p.parent_path() / (p.stem().string() + ".tmp-" + std::to_string(getpid()) + "-" +
+                             std::to_string(counter++) + p.extension().string()))
+      .string();
+}
+
+void write_file(const std::string& path, const void* data, size_t size) {
+  const std::string temporary = temporary_path(path);
   std::string reason;
   if (std::FILE* file = std::fopen(temporary.c_str(), "wb")) {
     if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);

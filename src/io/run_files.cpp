@@ -1,7 +1,5 @@
 #include "geolens/io/run_files.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -37,12 +35,7 @@ void RunFiles::add_folder(const std::string& option, const std::string& path) {
 }
 
 void RunFiles::add_output(const std::string& option, const std::string& path) {
-  const std::filesystem::path p(path);
-  const std::string temporary =
-      (p.parent_path() / (p.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                          std::to_string(outputs_.size()) + p.extension().string()))
-          .string();
-  outputs_.push_back({option, path, temporary});
+  outputs_.push_back({option, path, temporary_path(path)});
 }
 
 void RunFiles::check() const {

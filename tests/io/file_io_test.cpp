@@ -40,6 +40,15 @@ TEST_F(FileIo, FailureThrowsAndWritesNothing) {
     EXPECT_EQ(entry.path().filename(), "folder") << entry.path();
 }
 
+TEST_F(FileIo, TemporariesSitBesideTheirFileKeepTheExtensionAndNeverRepeat) {
+  const std::string path = (dir_ / "out.png").string();
+  const fs::path a(temporary_path(path)), b(temporary_path(path));
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a.parent_path(), dir_);
+  EXPECT_EQ(a.extension(), ".png");
+  EXPECT_EQ(a.filename().string().rfind("out.tmp-", 0), 0u) << a;
+}
+
 TEST_F(FileIo, SameFileSeesThroughSpellings) {
   const std::string path = (dir_ / "b.txt").string();
   write_file(path, "x");

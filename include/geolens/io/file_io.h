@@ -6,8 +6,13 @@
 
 namespace geolens {
 
-/// Writes `size` bytes at `data` to a temporary file in the folder of `path` (its name unique per
-/// process and call, so concurrent writes of one path do not collide) and renames it into place,
+/// A name for a temporary file beside `path`, with its extension (so a writer that picks its
+/// format by extension still does): STEM.tmp-PID-N.EXT, N counting the calls of this process, so
+/// two temporaries of one path never collide, within a process or between processes.
+std::string temporary_path(const std::string& path);
+
+/// Writes `size` bytes at `data` to a temporary file in the folder of `path` (temporary_path)
+/// and renames it into place,
 /// so `path` is never left partial. Throws IoError naming `path` and the reason if writing or
 /// renaming fails (the temporary is removed).
 void write_file(const std::string& path, const void* data, size_t size);
