@@ -7,6 +7,7 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_session.h"
 #include "geolens/lens/lift.h"
 #include "geolens/lens/texture_map.h"
 
@@ -113,13 +114,13 @@ void BM_UpdateMoved(benchmark::State& state) {
   o.model = model_argument(state, 2);
   o.mesh = int(state.range(0));
   const double step = double(state.range(1));
-  GeometricLens lens(1024, 1024, o);
+  LensSession lens(1024, 1024, o);
   double x = 400;
   lens.update({Lens{Region::circle({x, 512}, 150)}});
   int solves = 0, iterations = 0;
   for (auto _ : state) {
     x = x + step > 620 ? 400 : x + step;
-    const LensResult& r = lens.update({Lens{Region::circle({x, 512}, 150)}});
+    const LensResult r = lens.update({Lens{Region::circle({x, 512}, 150)}});
     solves += r.solves;
     iterations += r.flattening.iterations;
   }
@@ -134,7 +135,7 @@ void BM_UpdateMovedStar(benchmark::State& state) {
   LensOptions o;
   o.model = model_argument(state, 1);
   o.mesh = int(state.range(0));
-  GeometricLens lens(1024, 1024, o);
+  LensSession lens(1024, 1024, o);
   auto star = [](double x) {
     std::vector<Eigen::Vector2d> p;
     for (int k = 0; k < 10; ++k) {
@@ -160,7 +161,7 @@ void BM_UpdateFirst(benchmark::State& state) {
   o.model = model_argument(state, 1);
   o.mesh = int(state.range(0));
   for (auto _ : state) {
-    GeometricLens lens(1024, 1024, o);
+    LensSession lens(1024, 1024, o);
     benchmark::DoNotOptimize(lens.update({Lens{Region::circle({512, 512}, 150)}}));
   }
 }
@@ -188,7 +189,7 @@ void BM_LocalUpdateMoved(benchmark::State& state) {
   LensOptions o;
   o.model = LensModel::kAuto;  // the lift and field figures of bench/README.md
   o.extent = Extent::kLocal;
-  GeometricLens lens(side, side, o);
+  LensSession lens(side, side, o);
   double x = side / 2;
   lens.update({Lens{Region::circle({x, side / 2}, 200)}});
   for (auto _ : state) {

@@ -388,7 +388,8 @@ double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
   return s_max > 1.0 ? 1.0 : std::min(1.0, 0.9 * s_max);
 }
 
-FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess) const {
+FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess,
+                               const SolveControl* control) const {
   require(X0.rows() == rest_.rows(), "Flattener::solve",
           "initial guess has " + std::to_string(X0.rows()) + " rows, expected " +
               std::to_string(rest_.rows()));
@@ -444,6 +445,10 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
   // A start off its fixed values (a guess that moved a pinned or border vertex) takes at least
   // one global step, which puts them back, however low its energy.
   const bool off_fixed = !keeps_fixed(r.X, fixed_values);
+  auto report = [&] {
+    if (control) control->step({0, r.iterations, r.energy.back()}, "Flattener::solve");
+  };
+  report();
   while (r.iterations < options_.max_iterations) {
     if (r.energy.back() <= negligible && !(off_fixed && r.iterations == 0)) {
       r.converged = true;
@@ -473,6 +478,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
     ++r.iterations;
     const double previous = r.energy.back();
     r.energy.push_back(local_step());
+    report();
     if (std::abs(previous - r.energy.back()) <= options_.tolerance * previous) {
       r.converged = true;
       break;

@@ -366,7 +366,8 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height) {
+                            double cell, double band, double width, double height,
+                            const SolveControl* control) {
   // The full start, else one at lower zooms (the solve then raises them), else the identity.
   for (const double fraction : kZoomFractions) {
     std::vector<FocusGroup> lowered = groups;
@@ -374,9 +375,9 @@ FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
     const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height);
     if (!flattener.admissible(start)) continue;
     flattener.admit_anisotropy(start);
-    return flattener.solve(start);
+    return flattener.solve(start, nullptr, control);
   }
-  return flattener.solve(V);
+  return flattener.solve(V, nullptr, control);
 }
 
 bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
-#include <limits>
 #include <string>
 #include <utility>
 
@@ -12,110 +10,22 @@
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
+#include "lens/calibration.h"
+#include "lens/framing.h"
+#include "lens/solve_cache.h"
 
 namespace geolens {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kMaxHeightOverSize = 20.0;
-// The field model's height over size is the peak's log zoom: at most 64x, the square of the
-// largest zoom a lens may ask for (the context's resistance takes the rest).
-const double kMaxFieldLogZoom = 2 * std::log(8.0);
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// First guess of the peak height for a zoom (pixels). The lift's, in units of the region's
-// size, is a L + b L^2 with L = log(zoom), per profile (gaussian, sphere, mesa), fitted through
-// the calibrated heights of zoom 2 and 3 (default options, 100 x 100 grid, r = 150 px on 1024
-// px), so those need a single solve; the field's is its peak's log zoom, which the context's
-// resistance lowers by about 1 / 1.7. L is taken at most log 8, where the fits still rise.
-double height_for_zoom(const Lens& lens, LensModel model, double zoom) {
-  if (model == LensModel::kFocus) return std::log(zoom);  // exact, up to the focus weight
-  const double L = std::min(std::log(zoom), std::log(8.0));
-  if (model == LensModel::kField) return lens.region.size() * 1.7 * L;
-  const double a[] = {1.180, 2.854, 2.264}, b[] = {-0.0912, -0.687, -0.453};
-  const int p = int(lens.profile);
-  return lens.region.size() * (a[p] * L + b[p] * L * L);
-}
-
-// The first guess on a grid of cell side `cell` (pixels). The gaussian's peak is sharp, so a
-// coarse grid under-represents its bump: the calibrated h0 / r for zoom 2 is 0.722 (cell / r
-// below 0.035), 0.774 (0.069), 0.94 (0.138), about 1 + 15 (cell / r)^2 times the first, so the
-// fit above (made at 0.069) is rescaled by that factor. The sphere and the mesa hardly change.
-double initial_height(const Lens& lens, LensModel model, double cell) {
-  const double h = height_for_zoom(lens, model, lens.zoom);
-  if (model != LensModel::kLift || lens.profile != Profile::kGaussian) return h;
-  auto coarseness = [](double x) { return 1 + 15 * x * x; };
-  return h * coarseness(cell / lens.region.size()) / coarseness(0.069);
 }
 
 // The side of a grid cell over `box` with `mesh` vertices along its long side, pixels.
 double cell_size(const Eigen::AlignedBox2d& box, int mesh) {
   return box.sizes().maxCoeff() / (mesh - 1);
-}
-
-// Scales the flattening to the frame: sliding and fixed borders already fill the image; a free
-// flattening is scaled uniformly to fit and centred.
-Eigen::MatrixX2d frame(const Eigen::MatrixX2d& X, Boundary boundary, double width, double height) {
-  if (boundary != Boundary::kFree) return X;
-  const Eigen::Vector2d lo = X.colwise().minCoeff(), hi = X.colwise().maxCoeff();
-  const Eigen::Vector2d extent = hi - lo;
-  const double scale = std::min(width / extent.x(), height / extent.y());
-  const Eigen::RowVector2d offset(0.5 * (width - scale * extent.x()),
-                                  0.5 * (height - scale * extent.y()));
-  return ((X.rowwise() - lo.transpose()) * scale).rowwise() + offset;
-}
-
-// Triangulates the image rectangle outside the local patch `box` (whose border vertices are those
-// of `mesh` with non-zero sides) as the identity, conforming to the patch border: four
-// trapezoids, each fanned from its two outer corners. Appends to `warp`.
-void add_identity_frame(WarpMesh& warp, const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
-                        double width, double height) {
-  const Eigen::Vector2d lo = box.min(), hi = box.max();
-  // The four image corners are appended as identity vertices.
-  const Eigen::Index first = warp.source.rows();
-  const Eigen::Vector2d corner[4] = {{0, 0}, {width, 0}, {width, height}, {0, height}};
-  warp.source.conservativeResize(first + 4, 2);
-  warp.screen.conservativeResize(first + 4, 2);
-  for (int k = 0; k < 4; ++k) {
-    warp.source.row(first + k) = corner[k].transpose();
-    warp.screen.row(first + k) = corner[k].transpose();
-  }
-  std::vector<Eigen::RowVector3i> faces;
-  // Side k runs from patch corner k to k + 1 (top: left to right, right: top to bottom, ...),
-  // facing image corners k and k + 1.
-  const Eigen::Vector2d patch_corner[4] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector2d a = patch_corner[k], b = patch_corner[(k + 1) % 4];
-    const Eigen::Vector2d direction = (b - a).normalized();
-    // The trapezoid is empty where the patch touches the image side.
-    const Eigen::Vector2d outward(direction.y(), -direction.x());
-    if (std::abs((corner[k] - a).dot(outward)) < 1e-9) continue;
-    std::vector<std::pair<double, int>> side;
-    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
-      if (mesh.sides[size_t(i)] == 0) continue;
-      const Eigen::Vector2d p = mesh.V.row(i);
-      const Eigen::Vector2d d = p - a;
-      if (std::abs(d.dot(outward)) < 1e-9 && d.dot(direction) > -1e-9 &&
-          d.dot(direction) < (b - a).norm() + 1e-9)
-        side.emplace_back(d.dot(direction), int(i));
-    }
-    std::sort(side.begin(), side.end());
-    const int ca = int(first) + k, cb = int(first) + (k + 1) % 4;
-    const size_t middle = side.size() / 2;
-    // With y down, image corner -> patch side -> ... is oriented like the grid's triangles
-    // when the patch side is walked from b back to a.
-    for (size_t i = 0; i + 1 < side.size(); ++i) {
-      const int apex = i < middle ? ca : cb;
-      faces.emplace_back(apex, side[i + 1].second, side[i].second);
-    }
-    faces.emplace_back(ca, cb, side[middle].second);
-  }
-  const Eigen::Index old = warp.F.rows();
-  warp.F.conservativeResize(old + Eigen::Index(faces.size()), 3);
-  for (size_t f = 0; f < faces.size(); ++f) warp.F.row(old + Eigen::Index(f)) = faces[f];
 }
 
 }  // namespace
@@ -224,11 +134,11 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
 std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::vector<double>& fits,
                                         Grid& grid, Eigen::AlignedBox2d& box) const {
   fits.clear();
+  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   if (model_for(lenses) != LensModel::kFocus) {
     grid = base_grid(lenses, box);
     return lenses;
   }
-  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   box = solved_box(lenses);
   const double cell = cell_size(box, options_.mesh);
   fits = fitting_zooms(lenses, cell, focus_band(lenses, cell), width_, height_);
@@ -339,97 +249,79 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
   r.solves = 1;
 }
 
-LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
-                                             const std::vector<double>& heights) const {
-  Eigen::AlignedBox2d box;
-  const Grid grid = base_grid(lenses, box);
-  return solve_on(grid, box, lenses, heights);
+PlanarMesh GeometricLens::solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
+                                      const std::vector<double>& heights) const {
+  if (model_for(lenses) == LensModel::kFocus) return grid;
+  return subdivide(
+      grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
+      options_.subdivision);
 }
 
-LensResult GeometricLens::solve_on(const Grid& grid, const Eigen::AlignedBox2d& box,
-                                   const std::vector<Lens>& lenses,
-                                   const std::vector<double>& heights) const {
+LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
+                                             const std::vector<double>& heights) const {
+  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
+  Eigen::AlignedBox2d box;
+  const Grid grid = base_grid(lenses, box);
+  SolveCache cache;
+  return solve_once(solved_mesh(grid, lenses, heights), box, lenses, heights, cache, {}, 1);
+}
+
+LensResult GeometricLens::solve_once(const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
+                                     const std::vector<Lens>& lenses,
+                                     const std::vector<double>& heights, SolveCache& cache,
+                                     const SolveControl& control, int solve) const {
   const auto start = Clock::now();
   LensResult r;
-  const PlanarMesh mesh =
-      model_for(lenses) == LensModel::kFocus
-          ? PlanarMesh(grid)
-          : subdivide(
-                grid, [&](const Eigen::Vector2d& p) { return lift_height(lenses, heights, p); },
-                options_.subdivision);
   FocusField focus;
   const Lifted lifted = lift_and_texture(lenses, heights, mesh, box, start, r, focus);
 
   auto t = Clock::now();
-  Flattener flattener(lifted.V, r.mesh.F, lifted.level, r.mesh.sides, flatten_options(r.model),
-                      lifted.log_zoom, focus.constraints);
-  r.timings.factorize = ms_since(t);
-
-  t = Clock::now();
-  if (r.model == LensModel::kFocus) {
-    const double cell = cell_size(box, options_.mesh);
-    r.flattening = flatten_focus(flattener, r.mesh.V, lenses, focus.groups, cell,
-                                 focus_band(lenses, cell), width_, height_);
-  } else {
-    r.flattening = flattener.solve(r.mesh.V);
-  }
-  r.timings.iterate = ms_since(t);
-
-  finish(lenses, lifted, r);
-  r.timings.total = ms_since(start);
-  return r;
-}
-
-// The interactive path: the base grid (no subdivision, so the topology and the symbolic
-// factorization stay), the flattener refitted numerically, and the previous flattening as the
-// starting point.
-LensResult GeometricLens::solve_cached(const Grid& grid, const Eigen::AlignedBox2d& box,
-                                       const std::vector<Lens>& lenses,
-                                       const std::vector<double>& heights) {
-  const auto start = Clock::now();
-  LensResult r;
-  FocusField focus;
-  const Lifted lifted = lift_and_texture(lenses, heights, grid, box, start, r, focus);
-
-  auto t = Clock::now();
   // A local patch has the same topology wherever it is, as long as its size is unchanged; a
   // focus lens's also needs the same pinned vertices.
-  const bool same_topology = cache_.flattener && cache_.flat.rows() == r.mesh.V.rows() &&
-                             (cache_.box.sizes() - r.box.sizes()).norm() < 1e-9 &&
-                             focus.constraints.pinned == cache_.pinned &&
-                             cache_.faces.rows() == r.mesh.F.rows() && cache_.faces == r.mesh.F;
-  if (same_topology && cache_.model == r.model) {
-    cache_.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus.constraints);
-    const Eigen::RowVector2d shift = (r.box.min() - cache_.box.min()).transpose();
-    cache_.flat.rowwise() += shift;
-    if (cache_.predicted.rows() == cache_.flat.rows()) cache_.predicted.rowwise() += shift;
+  const bool same_topology = cache.flattener && cache.model == r.model &&
+                             cache.flat.rows() == r.mesh.V.rows() &&
+                             (cache.box.sizes() - r.box.sizes()).norm() < 1e-9 &&
+                             focus.constraints.pinned == cache.pinned &&
+                             cache.faces.rows() == r.mesh.F.rows() && cache.faces == r.mesh.F;
+  if (same_topology) {
+    cache.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, focus.constraints);
+    const Eigen::RowVector2d shift = (r.box.min() - cache.box.min()).transpose();
+    cache.flat.rowwise() += shift;
+    if (cache.predicted.rows() == cache.flat.rows()) cache.predicted.rowwise() += shift;
   } else {
-    cache_.flattener =
+    cache.flattener =
         std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
                                     flatten_options(r.model), lifted.log_zoom, focus.constraints);
-    cache_.flat = r.mesh.V;
-    cache_.predicted.resize(0, 2);
+    cache.flat = r.mesh.V;
+    cache.predicted.resize(0, 2);
   }
-  cache_.box = r.box;
-  cache_.pinned = std::move(focus.constraints.pinned);
-  cache_.faces = r.mesh.F;
-  cache_.model = r.model;
+  cache.box = r.box;
+  cache.pinned = std::move(focus.constraints.pinned);
+  cache.faces = r.mesh.F;
+  cache.model = r.model;
   r.timings.factorize = ms_since(t);
 
   t = Clock::now();
-  // A lens dragged steadily moves its flattening steadily: the last update's change added again
-  // is the better start (unless it folds a triangle; after a stop or a jump it costs at most an
-  // iteration). A focus lens has a better one still: its power-law start.
-  const bool predicted = cache_.predicted.rows() == cache_.flat.rows();
+  // The progress of this calibration solve, numbered.
+  SolveControl numbered{control.cancel, nullptr};
+  if (control.progress)
+    numbered.progress = [&](const SolveProgress& p) {
+      control.progress({solve, p.iteration, p.energy});
+    };
+  // A lens dragged steadily moves its flattening steadily: a prediction is the better start
+  // (unless it folds a triangle; after a stop or a jump it costs at most an iteration). A focus
+  // lens has a better one still: its power-law start.
+  const bool predicted = cache.predicted.rows() == cache.flat.rows();
   if (r.model == LensModel::kFocus) {
     const double cell = cell_size(box, options_.mesh);
-    r.flattening = flatten_focus(*cache_.flattener, r.mesh.V, lenses, focus.groups, cell,
-                                 focus_band(lenses, cell), width_, height_);
+    r.flattening = flatten_focus(*cache.flattener, r.mesh.V, lenses, focus.groups, cell,
+                                 focus_band(lenses, cell), width_, height_, &numbered);
   } else {
-    r.flattening = cache_.flattener->solve(cache_.flat, predicted ? &cache_.predicted : nullptr);
+    r.flattening =
+        cache.flattener->solve(cache.flat, predicted ? &cache.predicted : nullptr, &numbered);
   }
-  cache_.predicted.resize(0, 2);  // only the first solve of an update has one
-  cache_.flat = r.flattening.X;
+  cache.predicted.resize(0, 2);  // only the first solve has one
+  cache.flat = r.flattening.X;
   r.timings.iterate = ms_since(t);
 
   finish(lenses, lifted, r);
@@ -437,7 +329,17 @@ LensResult GeometricLens::solve_cached(const Grid& grid, const Eigen::AlignedBox
   return r;
 }
 
-LensResult GeometricLens::solve(const std::vector<Lens>& asked) const {
+LensResult GeometricLens::calibrated(const std::vector<Lens>& lenses, const PlanarMesh& mesh,
+                                     const Eigen::AlignedBox2d& box,
+                                     const std::vector<double>& heights, SolveCache& cache,
+                                     const SolveControl& control) const {
+  return calibrate(lenses, model_for(lenses), heights, options_.zoom_tolerance,
+                   options_.max_calibration_solves, [&](const std::vector<double>& h, int solve) {
+                     return solve_once(mesh, box, lenses, h, cache, control, solve);
+                   });
+}
+
+LensResult GeometricLens::solve(const std::vector<Lens>& asked, const SolveControl& control) const {
   std::vector<double> fits;
   Grid grid;
   Eigen::AlignedBox2d box;
@@ -446,124 +348,10 @@ LensResult GeometricLens::solve(const std::vector<Lens>& asked) const {
   const LensModel model = model_for(lenses);
   for (const Lens& lens : lenses)
     h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, grid.cell));
-  LensResult r = calibrate(lenses, h, [&](const std::vector<double>& heights) {
-    return solve_on(grid, box, lenses, heights);
-  });
+  SolveCache cache;
+  LensResult r = calibrated(lenses, solved_mesh(grid, lenses, h), box, h, cache, control);
   r.zoom_fits = std::move(fits);
   return r;
-}
-
-const LensResult& GeometricLens::update(const std::vector<Lens>& asked) {
-  std::vector<double> fits;
-  Grid grid;
-  Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = fitted(asked, fits, grid, box);
-  // Start from the heights found last time for a lens of the same shape, size and zoom (and
-  // model): after a move, one solve usually confirms them.
-  const LensModel model = model_for(lenses);
-  auto guess = [&](const Lens& lens) { return initial_height(lens, model, grid.cell); };
-  std::vector<double> h;
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    const Lens& lens = lenses[k];
-    const bool known = k < cache_.lenses.size() && cache_.result.model == model &&
-                       cache_.lenses[k].zoom == lens.zoom &&
-                       cache_.lenses[k].profile == lens.profile &&
-                       cache_.lenses[k].region.kind() == lens.region.kind() &&
-                       cache_.lenses[k].region.size() == lens.region.size();
-    h.push_back(lens.zoom == 1 ? 0.0 : known ? cache_.result.heights[k] : guess(lens));
-  }
-  Eigen::MatrixX2d before = cache_.flat;
-  const Eigen::Vector2d box_before = cache_.box.min();
-  if (cache_.change.rows() == before.rows()) cache_.predicted = before + cache_.change;
-  cache_.result = calibrate(lenses, h, [&](const std::vector<double>& heights) {
-    return solve_cached(grid, box, lenses, heights);
-  });
-  cache_.result.zoom_fits = std::move(fits);
-  cache_.lenses = lenses;
-  cache_.change.resize(0, 2);
-  if (before.rows() == cache_.flat.rows()) {
-    // In the current patch's coordinates (a local patch moves with its lens).
-    before.rowwise() += (cache_.box.min() - box_before).transpose();
-    cache_.change = cache_.flat - before;
-  }
-  return cache_.result;
-}
-
-LensResult GeometricLens::calibrate(
-    const std::vector<Lens>& lenses, std::vector<double> h,
-    const std::function<LensResult(const std::vector<double>&)>& run) const {
-  for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
-  const size_t n = lenses.size();
-  // Per lens, a bracket [lo, hi] of heights on f(h) = log(zoom(h)) - log(target), f(0) < 0,
-  // refined by false position (Illinois variant: an end kept twice has its f halved).
-  std::vector<double> lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
-  std::vector<int> last_side(n, 0);
-  for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
-  const LensModel model = model_for(lenses);
-  // The largest height tried: a focus's log zoom, the field's peak log zoom, or the lift's
-  // height over the region's size.
-  auto cap = [&](const Lens& lens) {
-    if (model == LensModel::kFocus) return kMaxFieldLogZoom;
-    return lens.region.size() *
-           (model == LensModel::kField ? kMaxFieldLogZoom : kMaxHeightOverSize);
-  };
-  StageTimings sum;
-  LensResult best;
-  double best_miss = std::numeric_limits<double>::infinity();
-  for (int solve = 1;; ++solve) {
-    LensResult r = run(h);
-    sum.lift += r.timings.lift;
-    sum.texture += r.timings.texture;
-    sum.factorize += r.timings.factorize;
-    sum.iterate += r.timings.iterate;
-    sum.total += r.timings.total;
-    // Keep the solve whose worst lens is closest to its zoom, should calibration not converge.
-    double miss = 0;
-    for (size_t k = 0; k < n; ++k)
-      miss = std::max(miss, std::abs(std::log(r.zoom_measured[k] / lenses[k].zoom)));
-    bool done = true;
-    for (size_t k = 0; k < n; ++k) {
-      if (h[k] == 0) continue;
-      const double gain = std::log(r.zoom_measured[k]);
-      const double f = gain - std::log(lenses[k].zoom);
-      if (std::abs(f) <= std::log1p(options_.zoom_tolerance)) continue;
-      done = false;
-      const int side = f < 0 ? -1 : 1;
-      if (side < 0) {
-        lo[k] = h[k];
-        f_lo[k] = f;
-        if (last_side[k] < 0) f_hi[k] *= 0.5;
-      } else {
-        hi[k] = h[k];
-        f_hi[k] = f;
-        if (last_side[k] > 0) f_lo[k] *= 0.5;
-      }
-      last_side[k] = side;
-      if (hi[k] < 0) {
-        // No upper end yet: scale the height by the first guess's ratio between the zoom
-        // wanted and the zoom reached (the guess's curve through h = 0), at most doubling.
-        h[k] = gain > 0
-                   ? std::min(2.0 * h[k], h[k] * height_for_zoom(lenses[k], model, lenses[k].zoom) /
-                                              height_for_zoom(lenses[k], model, std::exp(gain)))
-                   : 2.0 * h[k];
-      } else {
-        h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
-      }
-      // Taller bumps only fold: a lens that has not reached its zoom at 20 sizes never will.
-      h[k] = std::min(h[k], cap(lenses[k]));
-    }
-    if (miss < best_miss) {
-      best_miss = miss;
-      best = std::move(r);
-    }
-    // A focus lens's zoom is its focus's scale, not a result to aim for: one solve.
-    if (done || solve >= options_.max_calibration_solves || model == LensModel::kFocus) {
-      best.solves = solve;
-      break;
-    }
-  }
-  best.timings = sum;
-  return best;
 }
 
 }  // namespace geolens

@@ -2,13 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/numerics/sparse_solver.h"
 
 namespace geolens {
 
@@ -76,55 +75,23 @@ Eigen::MatrixX2d harmonic_texture(const Eigen::MatrixX3d& V3, const Eigen::Matri
                                   TextureWeights weights) {
   require(uv.rows() == V3.rows() && fixed.size() == size_t(V3.rows()), "harmonic_texture",
           "uv and fixed flags must have one row per vertex");
-  std::vector<int> free_index(fixed.size(), -1);
-  int free_count = 0;
-  for (size_t i = 0; i < fixed.size(); ++i)
-    if (!fixed[i]) free_index[i] = free_count++;
-  Eigen::MatrixX2d out = uv;
-  if (free_count == 0) return out;
+  if (std::all_of(fixed.begin(), fixed.end(), [](char f) { return f != 0; })) return uv;
   // Only the rows of free vertices matter: weigh the triangles that touch one.
   std::vector<Eigen::Index> touching;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     if (!fixed[size_t(F(f, 0))] || !fixed[size_t(F(f, 1))] || !fixed[size_t(F(f, 2))])
       touching.push_back(f);
   const Eigen::SparseMatrix<double> W = harmonic_weights(V3, F(touching, Eigen::all), weights);
-  // Free row i: sum_j w_ij (u_i - u_j) = 0, the fixed u_j moved to the right-hand side; the
-  // system has one unknown per free vertex only.
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(size_t(W.nonZeros()) * 2);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(free_count, 2);
-  for (int j = 0; j < W.outerSize(); ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(W, j); it; ++it) {
-      const int i = free_index[size_t(it.row())];
-      if (i < 0) continue;
-      entries.emplace_back(i, i, it.value());
-      if (free_index[size_t(j)] >= 0) {
-        entries.emplace_back(i, free_index[size_t(j)], -it.value());
-      } else {
-        rhs.row(i) += it.value() * uv.row(j);
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> A(free_count, free_count);
-  A.setFromTriplets(entries.begin(), entries.end());
-  Eigen::MatrixXd u;
-  if (weights != TextureWeights::kMeanValue) {  // symmetric positive definite
-    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(A);
-    if (llt.info() != Eigen::Success)
-      throw SolverError("harmonic_texture: Cholesky factorization failed on " +
-                        std::to_string(free_count) + " unknowns (not positive definite)");
-    u = llt.solve(rhs);
-  } else {  // mean value weights are not symmetric
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(A);
-    if (lu.info() != Eigen::Success)
-      throw SolverError("harmonic_texture: LU factorization failed on " +
-                        std::to_string(free_count) + " unknowns (singular)");
-    u = lu.solve(rhs);
-  }
-  for (size_t i = 0; i < fixed.size(); ++i)
-    if (free_index[i] >= 0) out.row(Eigen::Index(i)) = u.row(free_index[i]);
-  return out;
+  // Row i: sum_j w_ij (u_i - u_j) = 0, the Laplacian L = diag(W 1) - W, on the free rows (the
+  // rows of fixed vertices, which the untouched triangles leave empty, are not solved).
+  const Eigen::VectorXd degree = W * Eigen::VectorXd::Ones(W.cols());
+  const Eigen::SparseMatrix<double> L = Eigen::SparseMatrix<double>(degree.asDiagonal()) - W;
+  // Mean value weights are not symmetric.
+  const DirichletSolver solver(L, fixed,
+                               weights == TextureWeights::kMeanValue
+                                   ? DirichletSolver::Matrix::kGeneral
+                                   : DirichletSolver::Matrix::kSymmetric);
+  return solver.solve(Eigen::MatrixXd::Zero(uv.rows(), 2), uv);
 }
 
 }  // namespace geolens

@@ -1,5 +1,6 @@
 #include "geolens/numerics/sparse_solver.h"
 
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <string>
 
@@ -10,7 +11,17 @@ namespace geolens {
 
 using SpMat = Eigen::SparseMatrix<double>;
 
-DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed) {
+struct DirichletSolver::LU {
+  Eigen::SparseLU<SpMat> lu;
+  void factorize(const SpMat& A_ff) {
+    lu.compute(A_ff);
+    if (lu.info() != Eigen::Success)
+      throw SolverError("DirichletSolver: LU factorization failed on " +
+                        std::to_string(A_ff.rows()) + " unknowns (singular)");
+  }
+};
+
+DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed, Matrix matrix) {
   require(A.rows() == A.cols() && size_t(A.rows()) == fixed.size(), "DirichletSolver",
           "matrix is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) + " but " +
               std::to_string(fixed.size()) + " fixed flags were given");
@@ -22,7 +33,13 @@ DirichletSolver::DirichletSolver(const SpMat& A, const std::vector<char>& fixed)
     }
   }
   split(A);
-  if (!free_.empty()) cholesky_ = std::make_unique<WindowedCholesky>(A_ff_);
+  if (free_.empty()) return;
+  if (matrix == Matrix::kSymmetric) {
+    cholesky_ = std::make_unique<WindowedCholesky>(A_ff_);
+  } else {
+    lu_ = std::make_unique<LU>();
+    lu_->factorize(A_ff_);
+  }
 }
 
 DirichletSolver::~DirichletSolver() = default;
@@ -94,7 +111,11 @@ void DirichletSolver::refactorize(const SpMat& A, const std::vector<char>& focus
     focus_free.resize(free_.size());
     for (size_t r = 0; r < free_.size(); ++r) focus_free[r] = focus[size_t(free_[r])];
   }
-  cholesky_->refactorize(A_ff_, focus_free);
+  if (lu_) {
+    lu_->factorize(A_ff_);
+  } else {
+    cholesky_->refactorize(A_ff_, focus_free);
+  }
 }
 
 Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,
@@ -109,7 +130,7 @@ Eigen::MatrixXd DirichletSolver::solve(const Eigen::MatrixXd& b,
   Eigen::MatrixXd rhs(free_.size(), b.cols());
   for (size_t r = 0; r < free_.size(); ++r) rhs.row(Eigen::Index(r)) = b.row(free_[r]);
   rhs.noalias() -= A_fc_ * x_fixed;  // free rows of A_fc_ only touch fixed columns
-  const Eigen::MatrixXd xf = cholesky_->solve(rhs);
+  const Eigen::MatrixXd xf = lu_ ? Eigen::MatrixXd(lu_->lu.solve(rhs)) : cholesky_->solve(rhs);
   for (size_t r = 0; r < free_.size(); ++r) x.row(free_[r]) = xf.row(Eigen::Index(r));
   return x;
 }

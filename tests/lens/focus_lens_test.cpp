@@ -17,6 +17,7 @@
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_session.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_map.h"
 
@@ -196,10 +197,10 @@ TEST(FocusLens, FootprintMustExceedTheZoom) {
 
 // The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
 TEST(FocusLens, UpdateFollowsADraggedLens) {
-  GeometricLens geometric(1024, 1024);
+  LensSession geometric(1024, 1024);
   for (int step = 0; step < 6; ++step) {
     const Lens lens{Region::circle({440.0 + 12 * step, 500.0 + 5 * step}, 80), 2.0};
-    const LensResult& r = geometric.update({lens});
+    const LensResult r = geometric.update({lens});
     const FocusMeasure f = measure_foci(r.warp, measure_triangles(r.warp), {lens}).front();
     SCOPED_TRACE(step);
     EXPECT_NEAR(f.zoom, 2.0, 0.1);

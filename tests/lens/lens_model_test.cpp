@@ -10,6 +10,7 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_session.h"
 #include "geolens/lens/lift.h"
 #include "geolens/measure/distortion.h"
 #include "support/lens_options.h"
@@ -111,11 +112,11 @@ TEST(ShapeLens, AutoPicksTheLiftForCirclesOnly) {
 
 // A dragged polygon lens on the interactive path keeps its zoom and folds nothing.
 TEST(ShapeLens, UpdateFollowsAMovingPolygon) {
-  GeometricLens lens(1024, 1024, test::auto_model());
+  LensSession lens(1024, 1024, test::auto_model());
   for (int step = 0; step < 6; ++step) {
     Points moved = star();
     for (Eigen::Vector2d& p : moved) p.x() += 4.0 * step;
-    const LensResult& r = lens.update({Lens{Region::polygon(moved), 2.5}});
+    const LensResult r = lens.update({Lens{Region::polygon(moved), 2.5}});
     EXPECT_NEAR(r.zoom_measured[0] / 2.5, 1.0, 0.03) << "step " << step;
     EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0) << "step " << step;
   }

@@ -24,6 +24,12 @@ struct IoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A long call was stopped through its SolveControl's cancel flag (solve_control.h). Nothing the
+/// call would have returned exists; objects it used stay usable.
+struct Cancelled : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Throws InvalidInput("<function>: <what>") unless `condition` holds.
 void require(bool condition, const char* function, const std::string& what);
 

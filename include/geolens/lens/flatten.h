@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geolens/core/solve_control.h"
+
 namespace geolens {
 
 class DirichletSolver;
@@ -137,8 +139,11 @@ class Flattener {
 
   /// Iterates local and global steps from X0 (#V x 2; the paper starts from the projection of
   /// the 3D mesh) until the relative energy change is at most the tolerance or the cap.
-  /// `guess` (optional, #V x 2) starts instead unless it folds a triangle.
-  FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr) const;
+  /// `guess` (optional, #V x 2) starts instead unless it folds a triangle. `control` (optional)
+  /// hears of the start and of every step (SolveProgress::solve 0) and may stop the solve
+  /// (Cancelled).
+  FlattenResult solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess = nullptr,
+                      const SolveControl* control = nullptr) const;
 
   /// Brings the sparse Cholesky factorizations of the global step up to date with the weights:
   /// the analysis and factorization of L (x and y on two threads) the first time, the rows the

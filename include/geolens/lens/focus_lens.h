@@ -109,9 +109,10 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 /// to the start's distortion where that is higher (Flattener::admit_anisotropy: where the rings
 /// of several groups overlap); if the flattener does not admit that start (a fold on the mesh,
 /// a fixed vertex moved), from the start at 0.8, 0.6, 0.4, 0.2 of the log zooms, else from the
-/// identity `V` (#V x 2, pixels).
+/// identity `V` (#V x 2, pixels). `control` as in Flattener::solve.
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height);
+                            double cell, double band, double width, double height,
+                            const SolveControl* control = nullptr);
 
 }  // namespace geolens

@@ -4,11 +4,11 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "geolens/core/solve_control.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/geometry/subdivide.h"
 #include "geolens/lens/flatten.h"
@@ -95,25 +95,23 @@ struct LensResult {
   StageTimings timings;
 };
 
-/// Magnifies lenses on a width x height image. Holds the grid. solve() is independent of any
-/// earlier call; update() is the interactive path a GUI loop calls every frame: it keeps the
-/// flattener (and its symbolic factorization) while the mesh's topology stays, starts a focus
-/// lens from its power-law start and the other models from the previous frame's flattening and
-/// heights, and skips subdivision.
+struct SolveCache;  // what one solve leaves for the next: lens/solve_cache.h (private)
+
+/// Magnifies lenses on a width x height image. Holds the grid and nothing that changes: solve()
+/// is independent of any earlier call and may run on several threads at once. The interactive
+/// path, which keeps what one frame leaves for the next, is LensSession (lens_session.h).
 class GeometricLens {
  public:
   GeometricLens(double width, double height, const LensOptions& options = {});
 
   /// kFocus: magnifies each lens's region by its zoom, or by the largest zoom that fits where it
   /// is (`zoom_fits`), in one solve. kLift and kField: finds each lens's bump height so that its
-  /// measured zoom matches its request (zoom 1 means height 0, the identity). Returns the final
-  /// warp. Throws InvalidInput for an invalid lens, SolverError if a system cannot be solved.
-  LensResult solve(const std::vector<Lens>& lenses) const;
-
-  /// Like solve() for lenses that moved or changed since the last update(), reusing what did not
-  /// change (see the class comment); the result stays valid until the next update(). Its zoom
-  /// and convergence are checked as in solve(); its mesh is the base grid.
-  const LensResult& update(const std::vector<Lens>& lenses);
+  /// measured zoom matches its request (zoom 1 means height 0, the identity): the mesh is
+  /// subdivided once for the first guess of the heights, and every calibration solve after the
+  /// first refits the same flattener (symbolic factorization kept) and starts from the last
+  /// flattening. Returns the final warp. Throws InvalidInput for an invalid lens, SolverError if
+  /// a system cannot be solved, Cancelled if `control` stops it.
+  LensResult solve(const std::vector<Lens>& lenses, const SolveControl& control = {}) const;
 
   /// One solve with given peak heights (pixels), no calibration; fills `zoom_measured`.
   LensResult solve_with_heights(const std::vector<Lens>& lenses,
@@ -123,18 +121,21 @@ class GeometricLens {
   const Grid& grid() const { return grid_; }
   double width() const { return width_; }
   double height() const { return height_; }
+  const LensOptions& options() const { return options_; }
 
  private:
+  friend class LensSession;
   Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
   Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
-  // The lenses to solve, and the grid (over `box`) to solve them on. kFocus: each zoom lowered
-  // to the largest that fits (footprints kept), those zooms in `fits`; other models: the lenses
-  // as they are.
+  // The lenses to solve (validated), and the grid (over `box`) to solve them on. kFocus: each
+  // zoom lowered to the largest that fits (footprints kept), those zooms in `fits`; other
+  // models: the lenses as they are.
   std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
                            Eigen::AlignedBox2d& box) const;
-  LensResult solve_on(const Grid& grid, const Eigen::AlignedBox2d& box,
-                      const std::vector<Lens>& lenses, const std::vector<double>& heights) const;
+  // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
+  PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
+                         const std::vector<double>& heights) const;
   FlattenOptions flatten_options(LensModel model) const;
   Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
                           const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
@@ -142,26 +143,20 @@ class GeometricLens {
                           FocusField& focus) const;
   void texture(const Lifted& lifted, LensResult& r) const;
   void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
-  LensResult solve_cached(const Grid& grid, const Eigen::AlignedBox2d& box,
-                          const std::vector<Lens>& lenses, const std::vector<double>& heights);
-  LensResult calibrate(const std::vector<Lens>& lenses, std::vector<double> heights,
-                       const std::function<LensResult(const std::vector<double>&)>& run) const;
+  // The one solve path: lifts `mesh` (over `box`) with `heights`, refits the flattener in `cache`
+  // (or builds it, when the topology changed), flattens from the cache's last flattening (or its
+  // prediction, or a focus lens's start) and frames the result. Leaves the flattening in the
+  // cache. `solve` numbers the calibration solve for `control`'s progress.
+  LensResult solve_once(const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
+                        const std::vector<Lens>& lenses, const std::vector<double>& heights,
+                        SolveCache& cache, const SolveControl& control, int solve) const;
+  LensResult calibrated(const std::vector<Lens>& lenses, const PlanarMesh& mesh,
+                        const Eigen::AlignedBox2d& box, const std::vector<double>& heights,
+                        SolveCache& cache, const SolveControl& control) const;
 
   double width_, height_;
   LensOptions options_;
   Grid grid_;
-  struct Cache {
-    std::unique_ptr<Flattener> flattener;
-    Eigen::MatrixX2d flat;       // the last flattening, the next update's starting point
-    Eigen::MatrixX2d change;     // what the last update changed in it (#V x 2, or empty)
-    Eigen::MatrixX2d predicted;  // flat + change: the candidate start of this update's first solve
-    Eigen::AlignedBox2d box;     // the area it covers
-    std::vector<char> pinned;    // the flattener's pinned vertices (kFocus)
-    Eigen::MatrixX3i faces;      // its triangles (a circle's ringed grid depends on the lens)
-    LensModel model = LensModel::kFocus;  // the flattener's
-    std::vector<Lens> lenses;
-    LensResult result;
-  } cache_;
 };
 
 }  // namespace geolens

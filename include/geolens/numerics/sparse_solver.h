@@ -13,16 +13,22 @@ namespace geolens {
 class WindowedCholesky;  // windowed_cholesky.h
 
 /// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
-/// A_ff x_f = b_f - A_fc x_c, A symmetric positive semidefinite (n x n), A_ff positive
+/// A_ff x_f = b_f - A_fc x_c. For a symmetric positive semidefinite A (n x n) with A_ff positive
 /// definite, by sparse Cholesky factorization (WindowedCholesky: after a change confined to a
-/// few rows, only a window around them is refactorized).
+/// few rows, only a window around them is refactorized); for a general A (A_ff invertible), by
+/// sparse LU.
 class DirichletSolver {
  public:
+  enum class Matrix { kSymmetric, kGeneral };
+
   /// @param A       n x n system matrix
   /// @param fixed   n flags, non-zero where the value is given (at least one for a
   ///                semi-definite A, else the reduced system is singular)
+  /// @param matrix  kSymmetric: A symmetric, A_ff positive definite; kGeneral: any A whose A_ff
+  ///                is invertible (refactorize() then factorizes it anew)
   /// Throws SolverError if the reduced matrix cannot be factorized.
-  DirichletSolver(const Eigen::SparseMatrix<double>& A, const std::vector<char>& fixed);
+  DirichletSolver(const Eigen::SparseMatrix<double>& A, const std::vector<char>& fixed,
+                  Matrix matrix = Matrix::kSymmetric);
   ~DirichletSolver();
   DirichletSolver(DirichletSolver&&) noexcept;
   DirichletSolver& operator=(DirichletSolver&&) noexcept;
@@ -54,7 +60,10 @@ class DirichletSolver {
   static constexpr int kDropped = std::numeric_limits<int>::min();
   std::vector<int> destination_;
   Eigen::Index pattern_size_ = 0;
-  std::unique_ptr<WindowedCholesky> cholesky_;  // of A_ff_; null when every entry is fixed
+  // A_ff_'s factorization (null when every entry is fixed): Cholesky, or LU for kGeneral.
+  std::unique_ptr<WindowedCholesky> cholesky_;
+  struct LU;
+  std::unique_ptr<LU> lu_;
 };
 
 }  // namespace geolens

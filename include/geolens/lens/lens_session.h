@@ -1,0 +1,46 @@
+#pragma once
+// The interactive face of the geometric lens: one object a GUI loop (or its worker thread) calls
+// every frame.
+
+#include <memory>
+#include <vector>
+
+#include "geolens/core/solve_control.h"
+#include "geolens/lens/geometric_lens.h"
+
+namespace geolens {
+
+/// A GeometricLens that remembers what one frame leaves for the next. update() reuses what did
+/// not change since the last call: the flattener and its symbolic factorization while the mesh's
+/// topology stays (a local patch of the same size, the same pinned vertices), the previous
+/// flattening (or, for a lens dragged steadily, the last change added again) as the start, the
+/// calibrated heights of a lens of the same shape, size and zoom; a focus lens starts from its
+/// power-law start. The mesh is the base grid (no subdivision, so the topology stays).
+///
+/// Results belong to the caller: a UI thread may draw the last one while update() computes the
+/// next on a worker thread (see LensWorker). One session is used by one thread at a time.
+class LensSession {
+ public:
+  LensSession(double width, double height, const LensOptions& options = {});
+  ~LensSession();
+  LensSession(LensSession&&) noexcept;
+  LensSession& operator=(LensSession&&) noexcept;
+
+  /// The lenses of this frame, solved as GeometricLens::solve() would (zoom calibrated and
+  /// checked the same way). Throws InvalidInput for an invalid lens (the session is unchanged),
+  /// SolverError if a system cannot be solved, Cancelled if `control` stops it (the next update
+  /// starts from the last finished frame).
+  LensResult update(const std::vector<Lens>& lenses, const SolveControl& control = {});
+
+  /// Forgets every frame: the next update() starts as a first placement.
+  void reset();
+
+  const GeometricLens& lens() const { return lens_; }
+
+ private:
+  struct State;
+  GeometricLens lens_;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace geolens

@@ -1,0 +1,67 @@
+#pragma once
+// A LensSession on its own thread, for a UI loop that must not wait for a solve.
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "geolens/core/solve_control.h"
+#include "geolens/lens/lens_session.h"
+
+namespace geolens {
+
+/// What the worker has to show: the latest result it finished, and the latest error.
+struct LensFrame {
+  std::uint64_t request = 0;                 ///< the request `result` answers; 0: none yet
+  std::shared_ptr<const LensResult> result;  ///< null before the first success
+  /// The latest request that failed (InvalidInput, SolverError) after `request`, and why; 0 and
+  /// empty if none did.
+  std::uint64_t failed_request = 0;
+  std::string error;
+};
+
+/// Runs a LensSession on a worker thread. The UI thread submits the lenses of each frame and
+/// draws latest() meanwhile; only the newest request waits (one submitted while another waits
+/// replaces it), so the worker never falls behind the pointer. Every call is thread-safe.
+class LensWorker {
+ public:
+  /// `progress` (optional) is called on the worker thread during each solve.
+  explicit LensWorker(LensSession session,
+                      std::function<void(const SolveProgress&)> progress = nullptr);
+  /// Stops the solve under way and joins the thread.
+  ~LensWorker();
+  LensWorker(const LensWorker&) = delete;
+  LensWorker& operator=(const LensWorker&) = delete;
+
+  /// Asks for `lenses` to be solved; returns the request's number (1, 2, ...).
+  std::uint64_t submit(std::vector<Lens> lenses);
+  /// Stops the solve under way (its request is dropped; latest() keeps the one before) and drops
+  /// the waiting request.
+  void cancel();
+  /// The latest finished frame (a copy; the result is shared and immutable).
+  LensFrame latest() const;
+  /// Blocks until no request is waiting or being solved.
+  void wait_idle();
+
+ private:
+  void run();
+
+  LensSession session_;
+  std::function<void(const SolveProgress&)> progress_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::vector<Lens> waiting_;
+  std::uint64_t submitted_ = 0, waiting_request_ = 0;  // waiting_request_ 0: none waits
+  bool busy_ = false, stop_ = false;
+  std::atomic<bool> cancel_{false};
+  LensFrame latest_;
+  std::thread thread_;  // last: starts once the members above exist
+};
+
+}  // namespace geolens

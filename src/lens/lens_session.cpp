@@ -1,0 +1,73 @@
+#include "geolens/lens/lens_session.h"
+
+#include <utility>
+
+#include "geolens/core/errors.h"
+#include "lens/calibration.h"
+#include "lens/solve_cache.h"
+
+namespace geolens {
+
+struct LensSession::State {
+  SolveCache cache;
+  Eigen::MatrixX2d change;      // what the last update changed in the flattening (#V x 2, or empty)
+  std::vector<Lens> lenses;     // the last update's (fitted) lenses
+  std::vector<double> heights;  // and their calibrated heights
+  LensModel model = LensModel::kFocus;
+};
+
+LensSession::LensSession(double width, double height, const LensOptions& options)
+    : lens_(width, height, options), state_(std::make_unique<State>()) {}
+LensSession::~LensSession() = default;
+LensSession::LensSession(LensSession&&) noexcept = default;
+LensSession& LensSession::operator=(LensSession&&) noexcept = default;
+
+void LensSession::reset() { state_ = std::make_unique<State>(); }
+
+LensResult LensSession::update(const std::vector<Lens>& asked, const SolveControl& control) {
+  State& s = *state_;
+  std::vector<double> fits;
+  Grid grid;
+  Eigen::AlignedBox2d box;
+  const std::vector<Lens> lenses = lens_.fitted(asked, fits, grid, box);
+  // Start from the heights found last time for a lens of the same shape, size and zoom (and
+  // model): after a move, one solve usually confirms them.
+  const LensModel model = lens_.model_for(lenses);
+  std::vector<double> h;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    const Lens& lens = lenses[k];
+    const bool known = k < s.lenses.size() && s.model == model && s.lenses[k].zoom == lens.zoom &&
+                       s.lenses[k].profile == lens.profile &&
+                       s.lenses[k].region.kind() == lens.region.kind() &&
+                       s.lenses[k].region.size() == lens.region.size();
+    h.push_back(lens.zoom == 1 ? 0.0
+                : known        ? s.heights[k]
+                               : initial_height(lens, model, grid.cell));
+  }
+  Eigen::MatrixX2d before = s.cache.flat;
+  const Eigen::Vector2d box_before = s.cache.box.min();
+  if (s.change.rows() == before.rows()) s.cache.predicted = before + s.change;
+  LensResult r;
+  try {
+    r = lens_.calibrated(lenses, grid, box, h, s.cache, control);
+  } catch (const Cancelled&) {
+    // The cache holds a consistent flattener and the last finished flattening, but no steady
+    // motion to predict from.
+    s.change.resize(0, 2);
+    s.cache.predicted.resize(0, 2);
+    throw;
+  }
+  r.zoom_fits = std::move(fits);
+  s.lenses = lenses;
+  s.heights = r.heights;
+  s.model = r.model;
+  s.change.resize(0, 2);
+  if (before.rows() == s.cache.flat.rows()) {
+    // In the current patch's coordinates (a local patch moves with its lens).
+    before.rowwise() += (s.cache.box.min() - box_before).transpose();
+    s.change = s.cache.flat - before;
+  }
+  return r;
+}
+
+}  // namespace geolens

@@ -1,0 +1,260 @@
+#include "geolens/lens/lens_session.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_worker.h"
+#include "geolens/measure/distortion.h"
+#include "support/lens_options.h"
+
+namespace geolens {
+namespace {
+
+// The interactive path against the exact, stateless one: a lens dragged in 4 px steps. Every
+// update keeps its zoom, flips nothing, and its energy is within 1 % of a fresh exact solve of
+// the same lens (same heights, same grid: subdivision off for the comparison); for a circle (the
+// lift model) and a star polygon (the field model).
+TEST(LensSession, UpdateMatchesTheExactSolveWhileTheLensMoves) {
+  LensOptions options = test::auto_model();
+  options.mesh = 60;
+  options.subdivision.max_levels = 0;
+  auto star = [](const Eigen::Vector2d& centre) {
+    std::vector<Eigen::Vector2d> p;
+    for (int k = 0; k < 10; ++k) {
+      const double r = k % 2 == 0 ? 100 : 45, a = M_PI / 2 + k * M_PI / 5;
+      p.push_back(centre + r * Eigen::Vector2d(std::cos(a), -std::sin(a)));
+    }
+    return Region::polygon(p);
+  };
+  for (const bool polygon : {false, true}) {
+    LensSession moving(600, 500, options);
+    const GeometricLens exact(600, 500, options);
+    for (int step = 0; step < 6; ++step) {
+      const Eigen::Vector2d centre(250.0 + 4 * step, 240.0 - 3 * step);
+      const Lens lens{polygon ? star(centre) : Region::circle(centre, 90), 2.5};
+      const LensResult r = moving.update({lens});
+      SCOPED_TRACE(std::string(polygon ? "star" : "circle") + ", step " + std::to_string(step));
+      EXPECT_EQ(r.model, polygon ? LensModel::kField : LensModel::kLift);
+      EXPECT_NEAR(r.zoom_measured[0] / 2.5, 1.0, 0.03);
+      EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+      EXPECT_TRUE(r.flattening.converged);
+      if (step > 0) EXPECT_LE(r.solves, 2) << "the previous heights should be reused";
+      const LensResult reference = exact.solve_with_heights({lens}, r.heights);
+      EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
+    }
+  }
+}
+
+// The interactive path under an erratic user: small moves, jumps, stops, zoom changes, a second
+// lens coming and going, a polygon switching the model. Every frame keeps its zoom, folds
+// nothing and ends within 1 % of a fresh exact solve's energy at the same heights.
+TEST(LensSession, UpdateSurvivesAnErraticSequence) {
+  LensOptions options = test::auto_model();
+  options.mesh = 50;
+  LensSession moving(800, 600, options);
+  const GeometricLens exact(800, 600, options);
+  const std::vector<Eigen::Vector2d> square = {{500, 150}, {620, 150}, {620, 260}, {500, 260}};
+  std::vector<Lens> lenses = {Lens{Region::circle({300, 300}, 90), 2.0}};
+  for (int frame = 0; frame < 24; ++frame) {
+    Lens& first = lenses[0];
+    const Eigen::Vector2d c = first.region.peak();
+    switch (frame % 8) {
+      case 0:
+      case 1:
+      case 2:  // small moves
+        first.region = Region::circle(c + Eigen::Vector2d(5, -3), 90);
+        break;
+      case 3:  // a stop: the same lenses again
+        break;
+      case 4:  // a jump
+        first.region = Region::circle({800 - c.x(), 600 - c.y()}, 90);
+        break;
+      case 5:  // a new zoom, and a second lens (a polygon: the field model)
+        first.zoom = first.zoom == 2.0 ? 2.5 : 2.0;
+        lenses.push_back(Lens{Region::polygon(square), 2.0});
+        break;
+      case 6:  // the polygon moves with the circle
+        first.region = Region::circle(c + Eigen::Vector2d(-4, 4), 90);
+        break;
+      case 7:  // the polygon goes
+        lenses.pop_back();
+        break;
+    }
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    const LensResult r = moving.update(lenses);
+    for (size_t k = 0; k < lenses.size(); ++k)
+      EXPECT_NEAR(r.zoom_measured[k] / lenses[k].zoom, 1.0, 0.1) << "lens " << k;
+    EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+    const LensResult reference = exact.solve_with_heights(lenses, r.heights);
+    EXPECT_EQ(r.model, reference.model);
+    EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
+  }
+}
+
+// The largest distance between two warps' screen positions (same mesh), pixels.
+double screen_gap(const LensResult& a, const LensResult& b) {
+  EXPECT_EQ(a.warp.screen.rows(), b.warp.screen.rows());
+  if (a.warp.screen.rows() != b.warp.screen.rows()) return INFINITY;
+  return (a.warp.screen - b.warp.screen).rowwise().norm().maxCoeff();
+}
+
+Lens focus_circle(double x, double y) { return Lens{Region::circle({x, y}, 100), 2.0}; }
+
+// Progress reports every step of the flattening with its energy: for a focus lens (one solve)
+// the reports are exactly the result's energy sequence, numbered as solve 1.
+TEST(LensSession, ProgressReportsEveryStepOfTheSolve) {
+  LensSession session(1024, 1024);
+  std::vector<SolveProgress> reports;
+  SolveControl control;
+  control.progress = [&](const SolveProgress& p) { reports.push_back(p); };
+  const LensResult r = session.update({focus_circle(500, 480)}, control);
+  ASSERT_EQ(r.solves, 1);
+  ASSERT_EQ(reports.size(), r.flattening.energy.size());
+  for (size_t i = 0; i < reports.size(); ++i) {
+    EXPECT_EQ(reports[i].solve, 1);
+    EXPECT_EQ(reports[i].iteration, int(i));
+    EXPECT_EQ(reports[i].energy, r.flattening.energy[i]);
+  }
+}
+
+// The lift model calibrates over several solves: each is reported from its first step, in
+// order, and as many as the result counts.
+TEST(LensSession, ProgressNumbersTheCalibrationSolves) {
+  LensOptions options = test::auto_model();
+  options.mesh = 60;
+  LensSession session(800, 600, options);
+  std::vector<SolveProgress> reports;
+  SolveControl control;
+  control.progress = [&](const SolveProgress& p) { reports.push_back(p); };
+  const LensResult r = session.update({Lens{Region::circle({400, 300}, 120), 3.0}}, control);
+  ASSERT_FALSE(reports.empty());
+  int solve = 0;
+  for (size_t i = 0; i < reports.size(); ++i) {
+    if (reports[i].iteration == 0) {
+      EXPECT_EQ(reports[i].solve, ++solve);
+    } else {
+      EXPECT_EQ(reports[i].solve, solve);
+      EXPECT_EQ(reports[i].iteration, reports[i - 1].iteration + 1);
+    }
+  }
+  EXPECT_EQ(solve, r.solves);
+}
+
+// A cancelled update throws and leaves the session usable: the next update of the same lens is
+// the fresh session's answer (a focus lens starts from its power-law start whatever came before).
+TEST(LensSession, ACancelledUpdateThrowsAndTheNextIsExact) {
+  LensSession session(1024, 1024);
+  session.update({focus_circle(500, 480)});
+  std::atomic<bool> cancel{false};
+  SolveControl control{&cancel, [&](const SolveProgress&) { cancel = true; }};
+  EXPECT_THROW(session.update({focus_circle(530, 470)}, control), Cancelled);
+  const LensResult again = session.update({focus_circle(530, 470)});
+  const LensResult fresh = LensSession(1024, 1024).update({focus_circle(530, 470)});
+  EXPECT_LT(screen_gap(again, fresh), 1e-6);
+  EXPECT_EQ(again.flattening.iterations, fresh.flattening.iterations);
+}
+
+// Cancelled in the middle of a calibration (lift model), the session's next update still
+// reaches its zoom without a fold.
+TEST(LensSession, ACancelledCalibrationLeavesTheSessionUsable) {
+  LensOptions options = test::auto_model();
+  options.mesh = 60;
+  LensSession session(800, 600, options);
+  session.update({Lens{Region::circle({400, 300}, 120), 2.0}});
+  std::atomic<bool> cancel{false};
+  SolveControl control{&cancel, [&](const SolveProgress& p) {
+                         if (p.solve == 2) cancel = true;
+                       }};
+  const Lens moved{Region::circle({430, 280}, 120), 3.0};  // a new zoom: calibration again
+  EXPECT_THROW(session.update({moved}, control), Cancelled);
+  const LensResult r = session.update({moved});
+  EXPECT_NEAR(r.zoom_measured[0] / 3.0, 1.0, options.zoom_tolerance + 1e-9);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+}
+
+// An invalid lens is refused before anything changes: the same valid lens again gives the same
+// frame as before.
+TEST(LensSession, AnInvalidLensLeavesTheSessionAsItWas) {
+  LensSession session(1024, 1024);
+  const LensResult first = session.update({focus_circle(500, 480)});
+  EXPECT_THROW(session.update({Lens{Region::circle({500, 480}, 100), 9.0}}), InvalidInput);
+  EXPECT_THROW(session.update({Lens{Region::circle({2000, 480}, 100), 2.0}}), InvalidInput);
+  const LensResult again = session.update({focus_circle(500, 480)});
+  EXPECT_LT(screen_gap(first, again), 1e-6);
+}
+
+// The UI thread submits a lens dragged across the image as fast as it can and reads the latest
+// frame meanwhile: the frames it sees only move forward, and once the worker is idle the last
+// request is the one shown, equal to a fresh solve of its lens.
+TEST(LensWorker, TheLatestRequestIsSolvedWhileTheCallerReads) {
+  LensWorker worker{LensSession(1024, 1024)};
+  std::uint64_t seen = 0, last = 0;
+  for (int step = 0; step < 15; ++step) {
+    last = worker.submit({focus_circle(400.0 + 10 * step, 500)});
+    const LensFrame frame = worker.latest();
+    EXPECT_GE(frame.request, seen);
+    seen = frame.request;
+    EXPECT_EQ(frame.result == nullptr, frame.request == 0);
+  }
+  worker.wait_idle();
+  const LensFrame frame = worker.latest();
+  EXPECT_EQ(frame.request, last);
+  ASSERT_NE(frame.result, nullptr);
+  EXPECT_TRUE(frame.error.empty());
+  const LensResult fresh = GeometricLens(1024, 1024).solve({focus_circle(540, 500)});
+  EXPECT_LT(screen_gap(*frame.result, fresh), 1e-6);
+}
+
+// cancel() stops the solve under way: its request is dropped and the frame before stays.
+TEST(LensWorker, CancelDropsTheSolveUnderWay) {
+  LensOptions options = test::auto_model();
+  options.mesh = 150;  // a calibrated lift: long enough to be caught running
+  std::atomic<bool> armed{false}, running{false};
+  LensWorker worker{LensSession(1024, 1024, options), [&](const SolveProgress&) {
+                      if (armed) running = true;
+                    }};
+  worker.submit({Lens{Region::circle({500, 500}, 150), 2.0}});
+  worker.wait_idle();
+  ASSERT_EQ(worker.latest().request, 1u);
+  armed = true;
+  worker.submit({Lens{Region::circle({520, 500}, 150), 3.5}});
+  while (!running) std::this_thread::yield();
+  worker.cancel();
+  worker.wait_idle();
+  const LensFrame frame = worker.latest();
+  EXPECT_EQ(frame.request, 1u);
+  EXPECT_EQ(frame.failed_request, 0u);
+  EXPECT_EQ(worker.submit({Lens{Region::circle({520, 500}, 150), 2.0}}), 3u);
+  worker.wait_idle();
+  EXPECT_EQ(worker.latest().request, 3u);
+}
+
+// A request that fails keeps the last result on show and says why; the next success clears it.
+TEST(LensWorker, AFailedRequestKeepsTheLastResultAndSaysWhy) {
+  LensWorker worker{LensSession(1024, 1024)};
+  worker.submit({focus_circle(500, 480)});
+  worker.wait_idle();
+  worker.submit({Lens{Region::circle({500, 480}, 100), 9.0}});
+  worker.wait_idle();
+  LensFrame frame = worker.latest();
+  EXPECT_EQ(frame.request, 1u);
+  ASSERT_NE(frame.result, nullptr);
+  EXPECT_EQ(frame.failed_request, 2u);
+  EXPECT_NE(frame.error.find("zoom"), std::string::npos) << frame.error;
+  worker.submit({focus_circle(510, 480)});
+  worker.wait_idle();
+  frame = worker.latest();
+  EXPECT_EQ(frame.request, 3u);
+  EXPECT_EQ(frame.failed_request, 0u);
+  EXPECT_TRUE(frame.error.empty());
+}
+
+}  // namespace
+}  // namespace geolens
