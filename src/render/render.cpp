@@ -6,91 +6,15 @@
 #include <cstdint>
 #include <string>
 #include <thread>
-#include <type_traits>
 #include <vector>
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
+#include "source/with_channels.h"
 
 namespace geolens {
 
 namespace {
-
-// ---------------------------------------------------------------------------------------------
-// Sampling
-
-/// Calls f(std::integral_constant<int, channels>{}), so that per-pixel loops are compiled for
-/// each channel count.
-template <class F>
-void with_channels(int channels, F&& f) {
-  switch (channels) {
-    case 1:
-      f(std::integral_constant<int, 1>{});
-      break;
-    case 2:
-      f(std::integral_constant<int, 2>{});
-      break;
-    case 3:
-      f(std::integral_constant<int, 3>{});
-      break;
-    default:
-      f(std::integral_constant<int, 4>{});
-      break;
-  }
-}
-
-/// Adds `weight` times the bilinear sample of `level` at texel coordinates (u, v) (texel
-/// centres at integers) to acc[0..C), clamping to the edge.
-template <int C>
-void add_bilinear(const Image& level, double u, double v, float weight, float* acc) {
-  // Clamp so that the integer parts are in [-1, size - 1]; written so that NaN clamps too.
-  const double u_max = level.width - 1, v_max = level.height - 1;
-  if (!(u >= -1.0)) u = -1.0;
-  if (!(u <= u_max)) u = u_max;
-  if (!(v >= -1.0)) v = -1.0;
-  if (!(v <= v_max)) v = v_max;
-  const double u_floor = std::floor(u), v_floor = std::floor(v);
-  const int x = int(u_floor), y = int(v_floor);
-  const float fx = float(u - u_floor), fy = float(v - v_floor);
-  const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.width - 1);
-  const int y0 = std::max(y, 0), y1 = std::min(y + 1, level.height - 1);
-  const uint8_t* row0 = level.pixels.data() + size_t(y0) * size_t(level.width) * C;
-  const uint8_t* row1 = level.pixels.data() + size_t(y1) * size_t(level.width) * C;
-  const uint8_t* a = row0 + x0 * C;
-  const uint8_t* b = row0 + x1 * C;
-  const uint8_t* c = row1 + x0 * C;
-  const uint8_t* d = row1 + x1 * C;
-  for (int k = 0; k < C; ++k) {
-    const float top = float(a[k]) + fx * float(int(b[k]) - int(a[k]));
-    const float bottom = float(c[k]) + fx * float(int(d[k]) - int(c[k]));
-    acc[k] += weight * (top + fy * (bottom - top));
-  }
-}
-
-/// The next mip level of `fine`: half the size rounded up, each texel the mean of a 2x2 block
-/// (the edge texel repeated on odd sides). Rounding alternates in a checkerboard so that the
-/// coarse levels do not drift brighter.
-Image downsample(const Image& fine) {
-  Image coarse((fine.width + 1) / 2, (fine.height + 1) / 2, fine.channels);
-  with_channels(fine.channels, [&](auto channels) {
-    constexpr int C = decltype(channels)::value;
-    const size_t fine_stride = size_t(fine.width) * C;
-    for (int y = 0; y < coarse.height; ++y) {
-      const uint8_t* row0 = fine.pixels.data() + size_t(2 * y) * fine_stride;
-      const uint8_t* row1 =
-          fine.pixels.data() + size_t(std::min(2 * y + 1, fine.height - 1)) * fine_stride;
-      uint8_t* out = coarse.at(0, y);
-      for (int x = 0; x < coarse.width; ++x) {
-        const int x0 = 2 * x * C, x1 = std::min(2 * x + 1, fine.width - 1) * C;
-        const int bias = 1 + ((x ^ y) & 1);
-        for (int k = 0; k < C; ++k)
-          out[x * C + k] =
-              uint8_t((row0[x0 + k] + row0[x1 + k] + row1[x0 + k] + row1[x1 + k] + bias) >> 2);
-      }
-    }
-  });
-  return coarse;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Rasterization
@@ -108,6 +32,11 @@ constexpr double kGuard = 1 << 21;       ///< output pixels
 constexpr int kMaxOutputSide = 1 << 20;  ///< output pixels, keeps the viewport inside the guard
 constexpr double kMaxCoordinate = 1e12;  ///< output pixels, keeps clipping arithmetic finite
 constexpr double kMinArea = 1e-10;       ///< twice the area, squared output pixels
+// A triangle is drawn in blocks of at most kBlockRows x kBlockColumns output pixels, fetching
+// for each the texels it can reach: this bounds a fetched region (at most about 2 x 2 texels a
+// pixel, as the level of detail is chosen) whatever the triangle's size.
+constexpr int kBlockRows = 64;
+constexpr int kBlockColumns = 256;
 
 /// Affine map from an output pixel index (px, py) to texel coordinates (u, v) of one mip level.
 struct TexelMap {
@@ -192,32 +121,46 @@ struct EdgeWalker {
   }
 };
 
-/// A mip level as the inner loop reads it, held by value so that the output writes (which may
-/// alias any byte) do not force it to be reloaded.
+/// A fetched region of a mip level as the inner loop reads it, held by value so that the output
+/// writes (which may alias any byte) do not force it to be reloaded.
 struct LevelView {
-  const uint8_t* texels;
-  int width, height;
+  const uint8_t* texels;   ///< the region's first texel
+  size_t stride;           ///< bytes per row
+  int x_offset, y_offset;  ///< 1 + the level texel indices of the region's first texel
+  int x_last, y_last;      ///< the region's last texel, relative to its first
+  double u_min, u_max;     ///< texel coordinates are clamped to these
+  double v_min, v_max;
 };
 
-/// Bilinear sample of `level` at texel coordinates (u, v) (texel centres at integers),
+LevelView level_view(const TexelRegion& region) {
+  return {region.data,      region.stride,
+          region.x + 1,     region.y + 1,
+          region.width - 1, region.height - 1,
+          region.x - 1.0,   double(region.x + region.width - 1),
+          region.y - 1.0,   double(region.y + region.height - 1)};
+}
+
+/// Bilinear sample of a level at texel coordinates (u, v) (texel centres at integers),
 /// clamp-to-edge, with 8-bit sub-texel weights as texture hardware uses: writes 65536 times the
-/// value to out[0..C).
+/// value to out[0..C). Clamps to the region, which holds every texel the triangle reads (where
+/// it meets the level's edge, the region's edge is the level's): so the result is that of the
+/// whole level, and reads never leave the region.
 template <int C>
 [[gnu::always_inline]] inline void bilinear_fixed(const LevelView& level, double u, double v,
                                                   int32_t* out) {
-  const double u_max = level.width - 1, v_max = level.height - 1;
-  if (!(u >= -1.0)) u = -1.0;  // written so that NaN clamps too
-  if (!(u <= u_max)) u = u_max;
-  if (!(v >= -1.0)) v = -1.0;
-  if (!(v <= v_max)) v = v_max;
-  // Rounded to the nearest 1/256 texel; u + 1 >= 0, so the truncation rounds.
+  if (!(u >= level.u_min)) u = level.u_min;  // written so that NaN clamps too
+  if (!(u <= level.u_max)) u = level.u_max;
+  if (!(v >= level.v_min)) v = level.v_min;
+  if (!(v <= level.v_max)) v = level.v_max;
+  // Rounded to the nearest 1/256 texel; u >= u_min >= -1, so the truncation rounds.
   const int64_t u_fixed = int64_t((u + 1) * 256 + 0.5), v_fixed = int64_t((v + 1) * 256 + 0.5);
-  const int x = int(u_fixed >> 8) - 1, y = int(v_fixed >> 8) - 1;
+  // Relative to the region's first texel.
+  const int x = int(u_fixed >> 8) - level.x_offset, y = int(v_fixed >> 8) - level.y_offset;
   const int32_t fx = int32_t(u_fixed & 255), fy = int32_t(v_fixed & 255);
-  const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.width - 1);
-  const int y0 = std::max(y, 0), y1 = std::min(y + 1, level.height - 1);
-  const uint8_t* row0 = level.texels + size_t(y0) * size_t(level.width) * C;
-  const uint8_t* row1 = level.texels + size_t(y1) * size_t(level.width) * C;
+  const int x0 = std::max(x, 0), x1 = std::min(x + 1, level.x_last);
+  const int y0 = std::max(y, 0), y1 = std::min(y + 1, level.y_last);
+  const uint8_t* row0 = level.texels + size_t(y0) * level.stride;
+  const uint8_t* row1 = level.texels + size_t(y1) * level.stride;
   const uint8_t* a = row0 + x0 * C;
   const uint8_t* b = row0 + x1 * C;
   const uint8_t* c = row1 + x0 * C;
@@ -251,11 +194,13 @@ void shade_span(const Triangle& t, LevelView fine, LevelView coarse, int py, int
   }
 }
 
-/// Draws the part of the triangle (x[i], y[i]) (output pixels, within the guard square) in rows
-/// [row_begin, row_end), shading with `t`.
+/// Draws the part of the triangle (x[i], y[i]) (output pixels, within the guard square) in the
+/// block of rows [row_begin, row_end) and columns [col_begin, col_end), shading with `t` from
+/// `fine` (level t.level) and `coarse` (t.level + 1, read when t.blend > 0).
 template <int C>
-void fill(const double (&x)[3], const double (&y)[3], const Triangle& t, const MipPyramid& pyramid,
-          int row_begin, int row_end, const Target& target) {
+void fill(const double (&x)[3], const double (&y)[3], const Triangle& t, const LevelView& fine,
+          const LevelView& coarse, int row_begin, int row_end, int col_begin, int col_end,
+          const Target& target) {
   int64_t fx[3], fy[3];
   for (int i = 0; i < 3; ++i) {
     fx[i] = std::llround(x[i] * kSubpixel);
@@ -273,16 +218,11 @@ void fill(const double (&x)[3], const double (&y)[3], const Triangle& t, const M
       std::max<int64_t>(row_begin, floor_div(y_min - kSubpixel / 2 + kSubpixel - 1, kSubpixel)));
   row_end = int(std::min<int64_t>(row_end, floor_div(y_max - kSubpixel / 2, kSubpixel) + 1));
   if (row_begin >= row_end) return;
-  auto view = [&](int level) {
-    const Image& image = pyramid.level(level);
-    return LevelView{image.pixels.data(), image.width, image.height};
-  };
-  const LevelView fine = view(t.level), coarse = view(t.blend > 0 ? t.level + 1 : t.level);
   EdgeWalker edges[3] = {EdgeWalker(fx[0], fy[0], fx[1], fy[1], row_begin),
                          EdgeWalker(fx[1], fy[1], fx[2], fy[2], row_begin),
                          EdgeWalker(fx[2], fy[2], fx[0], fy[0], row_begin)};
   for (int py = row_begin; py < row_end; ++py) {
-    int64_t lo = 0, hi = target.width - 1;
+    int64_t lo = col_begin, hi = col_end - 1;
     for (const EdgeWalker& e : edges) e.clip(lo, hi);
     if (lo <= hi) {
       uint8_t* row = target.pixels + size_t(py) * size_t(target.width) * C;
@@ -310,39 +250,118 @@ Point crossing(Point a, Point b, int axis, double value) {
   return p;
 }
 
+/// The texels of `level` that shading output pixels [px_lo, px_hi] x [py_lo, py_hi] through
+/// `map` may read, clamped to the level: the bounding box of the block's corners mapped to
+/// texel coordinates, widened by a texel for the bilinear neighbour and the 1/256 rounding.
+TexelRegion fetch_reach(const Source& source, int level, const TexelMap& map, int px_lo, int px_hi,
+                        int py_lo, int py_hi) {
+  // As shade_span computes them; the map is affine, so the block's image is within the corners'.
+  double u[4], v[4];
+  for (int i = 0; i < 4; ++i) {
+    const int px = i & 1 ? px_hi : px_lo, py = i & 2 ? py_hi : py_lo;
+    u[i] = (map.u_y * py + map.u_0) + map.u_x * px;
+    v[i] = (map.v_y * py + map.v_0) + map.v_x * px;
+  }
+  double u_min = std::min(std::min(u[0], u[1]), std::min(u[2], u[3]));
+  double u_max = std::max(std::max(u[0], u[1]), std::max(u[2], u[3]));
+  double v_min = std::min(std::min(v[0], v[1]), std::min(v[2], v[3]));
+  double v_max = std::max(std::max(v[0], v[1]), std::max(v[2], v[3]));
+  if (std::isnan(u[0] + u[1] + u[2] + u[3])) u_min = u_max = std::nan("");  // the whole width
+  if (std::isnan(v[0] + v[1] + v[2] + v[3])) v_min = v_max = std::nan("");
+  // [floor(min) - 1, floor(max) + 2], clamped to [0, size - 1] (NaN: the whole side).
+  auto first = [](double a, int size) {
+    a = std::floor(a) - 1;
+    if (!(a >= 0)) a = 0;
+    if (!(a <= size - 1)) a = size - 1;
+    return int(a);
+  };
+  auto last = [](double b, int size, int first) {
+    b = std::floor(b) + 2;
+    if (!(b <= size - 1)) b = size - 1;
+    if (!(b >= first)) b = first;
+    return int(b);
+  };
+  const int w = source.level_width(level), h = source.level_height(level);
+  const int x0 = first(u_min, w), x1 = last(u_max, w, x0);
+  const int y0 = first(v_min, h), y1 = last(v_max, h, y0);
+  return source.fetch(level, x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+}
+
+/// False when the block of pixel centres [px_lo, px_hi] x [py_lo, py_hi], widened by a pixel
+/// (more than the vertex snapping moves an edge), lies wholly outside an edge of triangle `t`.
+bool may_touch(const Triangle& t, int px_lo, int px_hi, int py_lo, int py_hi) {
+  const double x0 = px_lo - 0.5, x1 = px_hi + 1.5, y0 = py_lo - 0.5, y1 = py_hi + 1.5;
+  const double area = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const double ex = t.x[j] - t.x[i], ey = t.y[j] - t.y[i];
+    auto outside = [&](double x, double y) {
+      return (ex * (y - t.y[i]) - ey * (x - t.x[i])) * area < 0;
+    };
+    if (outside(x0, y0) && outside(x1, y0) && outside(x0, y1) && outside(x1, y1)) return false;
+  }
+  return true;
+}
+
 /// Draws triangle `t` in rows [row_begin, row_end), clipping it to the guard square when it
-/// reaches beyond.
+/// reaches beyond, block by block: each block it may touch fetches the texels it can reach.
 template <int C>
-void draw(const Triangle& t, const MipPyramid& pyramid, int row_begin, int row_end,
+void draw(const Triangle& t, const Source& source, int row_begin, int row_end,
           const Target& target) {
+  // The triangle, or the fan of its part within the guard square.
+  double xs[6][3], ys[6][3];
+  int count = 0;
   bool inside = true;
   for (int i = 0; i < 3; ++i)
     inside = inside && std::abs(t.x[i]) <= kGuard && std::abs(t.y[i]) <= kGuard;
   if (inside) {
-    fill<C>(t.x, t.y, t, pyramid, row_begin, row_end, target);
-    return;
-  }
-  // Sutherland-Hodgman against x >= -G, x <= G, y >= -G, y <= G: at most 7 vertices.
-  Point polygon[8], clipped[8];
-  int n = 3;
-  for (int i = 0; i < 3; ++i) polygon[i] = {t.x[i], t.y[i]};
-  for (int plane = 0; plane < 4 && n > 0; ++plane) {
-    const int axis = plane / 2;
-    const double side = plane % 2 == 0 ? -1 : 1;  // keep side * coordinate <= kGuard
-    auto keep = [&](Point p) { return side * (axis == 0 ? p.x : p.y) <= kGuard; };
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-      const Point a = polygon[i], b = polygon[(i + 1) % n];
-      if (keep(a)) clipped[m++] = a;
-      if (keep(a) != keep(b)) clipped[m++] = crossing(a, b, axis, side * kGuard);
+    std::copy(t.x, t.x + 3, xs[0]);
+    std::copy(t.y, t.y + 3, ys[0]);
+    count = 1;
+  } else {
+    // Sutherland-Hodgman against x >= -G, x <= G, y >= -G, y <= G: at most 7 vertices.
+    Point polygon[8], clipped[8];
+    int n = 3;
+    for (int i = 0; i < 3; ++i) polygon[i] = {t.x[i], t.y[i]};
+    for (int plane = 0; plane < 4 && n > 0; ++plane) {
+      const int axis = plane / 2;
+      const double side = plane % 2 == 0 ? -1 : 1;  // keep side * coordinate <= kGuard
+      auto keep = [&](Point p) { return side * (axis == 0 ? p.x : p.y) <= kGuard; };
+      int m = 0;
+      for (int i = 0; i < n; ++i) {
+        const Point a = polygon[i], b = polygon[(i + 1) % n];
+        if (keep(a)) clipped[m++] = a;
+        if (keep(a) != keep(b)) clipped[m++] = crossing(a, b, axis, side * kGuard);
+      }
+      std::copy(clipped, clipped + m, polygon);
+      n = m;
     }
-    std::copy(clipped, clipped + m, polygon);
-    n = m;
+    for (int i = 1; i + 1 < n; ++i, ++count) {
+      xs[count][0] = polygon[0].x, xs[count][1] = polygon[i].x, xs[count][2] = polygon[i + 1].x;
+      ys[count][0] = polygon[0].y, ys[count][1] = polygon[i].y, ys[count][2] = polygon[i + 1].y;
+    }
   }
-  for (int i = 1; i + 1 < n; ++i) {
-    const double x[3] = {polygon[0].x, polygon[i].x, polygon[i + 1].x};
-    const double y[3] = {polygon[0].y, polygon[i].y, polygon[i + 1].y};
-    fill<C>(x, y, t, pyramid, row_begin, row_end, target);
+  // Columns whose pixel centres it may cover, with a pixel of slack for the snapping.
+  const double x_min = std::min({t.x[0], t.x[1], t.x[2]}),
+               x_max = std::max({t.x[0], t.x[1], t.x[2]});
+  const int col_begin = int(std::max(0.0, std::floor(x_min - 1)));
+  const int col_end = int(std::min(double(target.width), std::ceil(x_max + 1)));
+  const bool single_block =
+      row_end - row_begin <= kBlockRows && col_end - col_begin <= kBlockColumns;
+  for (int r = row_begin; r < row_end; r += kBlockRows) {
+    const int r_end = std::min(row_end, r + kBlockRows);
+    for (int c = col_begin; c < col_end; c += kBlockColumns) {
+      const int c_end = std::min(col_end, c + kBlockColumns);
+      if (!single_block && !may_touch(t, c, c_end - 1, r, r_end - 1)) continue;
+      const TexelRegion fine = fetch_reach(source, t.level, t.map[0], c, c_end - 1, r, r_end - 1);
+      const TexelRegion coarse =
+          t.blend > 0 ? fetch_reach(source, t.level + 1, t.map[1], c, c_end - 1, r, r_end - 1)
+                      : TexelRegion();
+      const LevelView fine_view = level_view(fine);
+      const LevelView coarse_view = t.blend > 0 ? level_view(coarse) : fine_view;
+      for (int i = 0; i < count; ++i)
+        fill<C>(xs[i], ys[i], t, fine_view, coarse_view, r, r_end, c, c_end, target);
+    }
   }
 }
 
@@ -454,40 +473,7 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
 
 }  // namespace
 
-MipPyramid::MipPyramid(const Image& source) {
-  require(source.width > 0 && source.height > 0, "MipPyramid",
-          "source must be non-empty, got " + std::to_string(source.width) + " x " +
-              std::to_string(source.height));
-  require(source.channels >= 1 && source.channels <= 4, "MipPyramid",
-          "source channels must be in [1, 4], got " + std::to_string(source.channels));
-  require(source.pixels.size() ==
-              size_t(source.width) * size_t(source.height) * size_t(source.channels),
-          "MipPyramid",
-          "source has " + std::to_string(source.pixels.size()) +
-              " bytes, expected width * height * channels");
-  levels_.push_back(source);
-  while (levels_.back().width > 1 || levels_.back().height > 1)
-    levels_.push_back(downsample(levels_.back()));
-}
-
-void MipPyramid::sample(double x, double y, double lod, float* out) const {
-  lod = std::clamp(lod, 0.0, double(levels() - 1));  // NaN stays NaN: handled below
-  const int fine = lod > 0 ? int(lod) : 0;
-  const float blend = lod > 0 ? float(lod - fine) : 0.0f;
-  with_channels(channels(), [&](auto channels) {
-    constexpr int C = decltype(channels)::value;
-    float acc[C] = {};
-    auto add = [&](int level, float weight) {
-      const double s = std::ldexp(1.0, -level);
-      add_bilinear<C>(levels_[size_t(level)], x * s - 0.5, y * s - 0.5, weight, acc);
-    };
-    add(fine, 1 - blend);
-    if (blend > 0) add(fine + 1, blend);
-    std::copy(acc, acc + C, out);
-  });
-}
-
-Image render(const WarpMesh& mesh, const MipPyramid& source, const RenderOptions& options) {
+Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& options) {
   validate(mesh, options);
   const int width = options.width, height = options.height, C = source.channels();
   const int threads =

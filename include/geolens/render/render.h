@@ -1,32 +1,15 @@
 #pragma once
-// CPU renderer: draws a WarpMesh, sampling the source through a mip pyramid.
+// CPU renderer: draws a WarpMesh, sampling a Source (an image's mip pyramid, a tiled image, ...).
 
 #include <array>
 #include <cstdint>
-#include <vector>
 
 #include "geolens/io/image.h"
+#include "geolens/source/mip_pyramid.h"  // the usual source; callers build it next to render()
+#include "geolens/source/source.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
-
-/// A mip pyramid of a source image: level 0 is the image, each next level halves both sides
-/// (rounding up) with a 2x2 box filter, down to 1x1. Built once per source, reused per frame.
-class MipPyramid {
- public:
-  explicit MipPyramid(const Image& source);
-  int levels() const { return int(levels_.size()); }
-  const Image& level(int i) const { return levels_[size_t(i)]; }
-  int channels() const { return levels_.front().channels; }
-
-  /// Trilinear sample at source-pixel coordinates (x, y) of level 0 (pixel centres at +0.5),
-  /// at level-of-detail `lod` (0 = full resolution; clamped to the pyramid), clamp-to-edge.
-  /// Writes channels() values in [0, 255] to `out`.
-  void sample(double x, double y, double lod, float* out) const;
-
- private:
-  std::vector<Image> levels_;
-};
 
 struct RenderOptions {
   int width = 0;                                             ///< output width, pixels (> 0)
@@ -39,10 +22,14 @@ struct RenderOptions {
 /// mesh.screen_width x mesh.screen_height to options.width x options.height) and samples the
 /// source at the interpolated source coordinate. The level of detail is chosen per triangle
 /// from its screen -> source Jacobian, so a minified context does not alias and a magnified
-/// focus is smooth. The output has the pyramid's channel count. Coverage is exact (vertices
+/// focus is smooth. The output has the source's channel count. Coverage is exact (vertices
 /// snapped to 1/256 pixel, a top-left style tie rule), so a pixel on an edge shared by two
 /// triangles is drawn once; where triangles overlap (a folded map), the later one in F is on top,
 /// whatever the thread count. Texels are blended with 8-bit weights, as texture hardware does.
-Image render(const WarpMesh& mesh, const MipPyramid& source, const RenderOptions& options);
+/// The source is read through Source::fetch, one region per triangle and screen block of at
+/// most 64 rows x 256 columns (the texels that block can reach, clamped to the level), from
+/// the worker threads at once; so every source renders alike, and an in-memory MipPyramid
+/// costs no copy.
+Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& options);
 
 }  // namespace geolens
