@@ -22,15 +22,16 @@ struct CompareArgs {
 /// Registers the `compare` subcommand and its options on `app`.
 CLI::App* add_compare_command(CLI::App& app, CompareArgs& args);
 
-/// Solves the geometric lens, matches the seven classic lenses to its measured zoom (circle lenses
-/// only; against a focus lens, with its footprint as radius and a flat top of its region's size)
-/// and writes into the output folder, per method NAME (geometric, zoom_in, fisheye,
-/// fisheye_smooth, bifocal, flattop_linear, flattop_cosine, power_ring): NAME.FORMAT (the output)
-/// and NAME_heatmap.FORMAT (its shape distortion with a scale), then panel.FORMAT (every method
-/// side by side around the lenses, labelled), report.json and report.md. With --sweep, one lens's
-/// footprint sweep instead (footprint_sweep.h): sweep.json, sweep.md and sweep.FORMAT. Returns
-/// the exit code; throws InvalidInput for bad input (an output file that is a folder or an
-/// input among it) before any work, and renames the files into place only once all are written.
+/// Compares the geometric lens with the seven classic lenses matched to its measured zoom
+/// (compare_lenses, eval/comparison.h: circle lenses only; against a focus lens, with its footprint
+/// as radius and a flat top of its region's size) and writes into the output folder, per method
+/// NAME (geometric, zoom_in, fisheye, fisheye_smooth, bifocal, flattop_linear, flattop_cosine,
+/// power_ring): NAME.FORMAT (the output) and NAME_heatmap.FORMAT (its shape distortion with a
+/// scale), then panel.FORMAT (every method side by side around the lenses, labelled), report.json
+/// and report.md. With --sweep, one lens's footprint sweep instead (footprint_sweep.h): sweep.json,
+/// sweep.md and sweep.FORMAT. Returns the exit code; throws InvalidInput for bad input (an output
+/// file that is a folder or an input among it) before any work, and renames the files into place
+/// only once all are written.
 int run_compare(const CompareArgs& args);
 
 }  // namespace geolens

@@ -30,6 +30,13 @@ SweepPoint measure(const std::string& method, double ratio, const WarpMesh& warp
 
 }  // namespace
 
+std::vector<double> sweep_ratios(double zoom) {
+  std::vector<double> ratios = {zoom + 1, 1.5 * zoom, 2 * zoom, 3 * zoom, 4 * zoom};
+  std::sort(ratios.begin(), ratios.end());
+  ratios.erase(std::unique(ratios.begin(), ratios.end()), ratios.end());
+  return ratios;
+}
+
 Sweep footprint_sweep(double width, double height, const Lens& lens, LensOptions options,
                       const std::vector<double>& ratios, int baseline_mesh) {
   validate_lens(lens, width, height);
@@ -45,12 +52,12 @@ Sweep footprint_sweep(double width, double height, const Lens& lens, LensOptions
     sweep.points.push_back(measure("geometric", ratio, solved.warp, swept));
     const double zoom = std::max(1.0, sweep.points.back().zoom);
     sweep.bound.push_back(zoom > 1 ? radial_distortion_bound(zoom, ratio) : 0.0);
-    if (lens.region.kind() != RegionKind::kCircle) continue;  // the classic lenses are radial
+    if (!lens.region.circle()) continue;  // the classic lenses are radial
     CircleLens target{lens.region.peak(), ratio * lens.region.reach(), zoom};
     target.focus_fraction = std::min(0.95, zoom / ratio);
     const double measure_radius = 0.05 * lens.region.reach();
     for (const ClassicLens kind : kClassicLenses) {
-      const MatchedClassicLens matched =
+      const Magnification matched =
           match_classic_lens(kind, {target}, {measure_radius}, width, height, baseline_mesh);
       sweep.points.push_back(measure(to_string(kind), ratio, matched.warp, swept));
     }

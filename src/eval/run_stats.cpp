@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "eval/lens_json.h"
 #include "geolens/eval/focus_measure.h"
-#include "geolens/lens/focus_lens.h"
 
 namespace geolens {
 
@@ -38,30 +38,9 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
       measure_foci(result.warp, measure_triangles(result.warp), lenses);
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < lenses.size(); ++k) {
-    const Region& region = lenses[k].region;
-    const Eigen::AlignedBox2d box = region.bounds();
-    nlohmann::json lens = {
-        {"kind", to_string(region.kind())},
-        {"bbox", {box.min().x(), box.min().y(), box.max().x(), box.max().y()}},
-        {"peak", {region.peak().x(), region.peak().y()}},
-        {"size", region.size()},
-        {"profile", to_string(lenses[k].profile)},
-        {"zoom_requested", lenses[k].zoom},
-        {"zoom_measured", result.zoom_measured[k]},
-        {"height", result.heights[k]},
-        {"footprint", footprint_ratio(lenses[k])},
-        {"focus",
-         {{"zoom", foci[k].zoom},
-          {"uniformity", foci[k].uniformity},
-          {"shape_mean", foci[k].shape_mean},
-          {"shape_max", foci[k].shape_max}}},
-        {"footprint_radius", foci[k].footprint_radius},
-        {"displacement_beyond_footprint", foci[k].displacement_beyond_footprint}};
+    nlohmann::json lens = lens_json(lenses[k], result.zoom_measured[k], foci[k]);
+    lens["height"] = result.heights[k];
     if (k < result.zoom_fits.size()) lens["zoom_fit"] = result.zoom_fits[k];
-    if (region.kind() == RegionKind::kCircle) {
-      lens["center"] = {region.peak().x(), region.peak().y()};
-      lens["radius"] = region.size();
-    }
     list.push_back(lens);
   }
   stats["lenses"] = list;

@@ -1,5 +1,6 @@
 #pragma once
-// Private: the shared state behind geolens::Region (roi.h).
+// Private: the region shape behind geolens's own regions (roi.h): its fields as functions,
+// analytic for a circle, sampled from a raster for a polygon or a mask blob.
 
 #include <functional>
 
@@ -7,17 +8,26 @@
 
 namespace geolens {
 
-struct Region::Impl {
-  RegionKind kind = RegionKind::kCircle;
-  Eigen::AlignedBox2d bounds;
-  Eigen::Vector2d peak = Eigen::Vector2d::Zero();
-  double size = 0;
-  double reach = 0;
-  std::vector<Eigen::Vector2d> vertices;  // polygons only
-  // The two fields (see roi.h), analytic for a circle, sampled from a raster otherwise.
-  std::function<double(const Eigen::Vector2d&)> depth;
-  std::function<double(const Eigen::Vector2d&)> thickness;
-  std::function<double(const Eigen::Vector2d&)> distance;  // 0 inside
+struct FieldShape final : RegionShape {
+  std::string name;
+  Eigen::AlignedBox2d box;
+  Eigen::Vector2d peak_point = Eigen::Vector2d::Zero();
+  double largest_thickness = 0;
+  double largest_reach = 0;
+  std::vector<Eigen::Vector2d> anchor_points;
+  std::optional<Circle> as_circle;
+  std::function<double(const Eigen::Vector2d&)> depth_at, thickness_at, distance_at;
+
+  std::string kind() const override { return name; }
+  Eigen::AlignedBox2d bounds() const override { return box; }
+  Eigen::Vector2d peak() const override { return peak_point; }
+  double size() const override { return largest_thickness; }
+  double reach() const override { return largest_reach; }
+  double depth(const Eigen::Vector2d& p) const override { return depth_at(p); }
+  double thickness(const Eigen::Vector2d& p) const override { return thickness_at(p); }
+  double distance(const Eigen::Vector2d& p) const override { return distance_at(p); }
+  std::vector<Eigen::Vector2d> anchors() const override { return anchor_points; }
+  std::optional<Circle> circle() const override { return as_circle; }
 };
 
 }  // namespace geolens

@@ -65,19 +65,19 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
   auto field = std::make_shared<const PolygonField>(PolygonField{
       depth_raster(inside, width, height, origin, cell), PolygonIndex(vertices, 2 * exact), exact});
 
-  auto impl = std::make_shared<Impl>();
-  impl->kind = RegionKind::kPolygon;
-  impl->bounds = box;
-  impl->vertices = vertices;
-  impl->depth = [field](const Eigen::Vector2d& p) {
+  auto shape = std::make_shared<FieldShape>();
+  shape->name = "polygon";
+  shape->box = box;
+  shape->anchor_points = vertices;
+  shape->depth_at = [field](const Eigen::Vector2d& p) {
     return depth_from_distances(field->raster.axis_distance(p), field->boundary_distance(p));
   };
-  impl->thickness = [field](const Eigen::Vector2d& p) {
+  shape->thickness_at = [field](const Eigen::Vector2d& p) {
     return field->raster.axis_distance(p) + field->boundary_distance(p);
   };
-  impl->peak = field->raster.peak;
-  impl->size = impl->thickness(impl->peak);
-  impl->distance = [field, vertices](const Eigen::Vector2d& p) {
+  shape->peak_point = field->raster.peak;
+  shape->largest_thickness = shape->thickness_at(shape->peak_point);
+  shape->distance_at = [field, vertices](const Eigen::Vector2d& p) {
     if (field->index.contains(p)) return 0.0;
     // Every edge (the index's bands serve short reaches; this one is unbounded).
     double d = std::numeric_limits<double>::infinity();
@@ -86,8 +86,8 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
     return d;
   };
   for (const Eigen::Vector2d& v : vertices)
-    impl->reach = std::max(impl->reach, (v - impl->peak).norm());
-  return Region(std::move(impl));
+    shape->largest_reach = std::max(shape->largest_reach, (v - shape->peak_point).norm());
+  return Region(std::move(shape));
 }
 
 std::vector<Region> Region::from_mask(const Image& mask) {
@@ -148,18 +148,18 @@ std::vector<Region> Region::from_mask(const Image& mask) {
     auto raster =
         std::make_shared<const DepthRaster>(depth_raster(inside, width, height, origin, 1.0));
 
-    auto impl = std::make_shared<Impl>();
-    impl->kind = RegionKind::kMask;
-    impl->bounds =
+    auto shape = std::make_shared<FieldShape>();
+    shape->name = "mask";
+    shape->box =
         Eigen::AlignedBox2d(Eigen::Vector2d(b.x0, b.y0), Eigen::Vector2d(b.x1 + 1, b.y1 + 1));
-    impl->depth = [raster](const Eigen::Vector2d& p) {
+    shape->depth_at = [raster](const Eigen::Vector2d& p) {
       return depth_from_distances(raster->axis_distance(p), raster->boundary_distance(p));
     };
-    impl->thickness = [raster](const Eigen::Vector2d& p) {
+    shape->thickness_at = [raster](const Eigen::Vector2d& p) {
       return raster->axis_distance(p) + raster->boundary_distance(p);
     };
-    impl->peak = raster->peak;
-    impl->size = impl->thickness(impl->peak);
+    shape->peak_point = raster->peak;
+    shape->largest_thickness = shape->thickness_at(shape->peak_point);
     // Outside, the distance to the nearest pixel square on the blob's boundary (one with a
     // 4-neighbour outside the blob), found by a scan over them.
     auto in_blob = [&](int x, int y) {
@@ -175,14 +175,14 @@ std::vector<Region> Region::from_mask(const Image& mask) {
     }
     for (const Eigen::Vector2d& e : *edge) {
       const Eigen::Vector2d far =
-          (impl->peak - e)
+          (shape->peak_point - e)
               .cwiseAbs()
-              .cwiseMax((impl->peak - e - Eigen::Vector2d::Ones()).cwiseAbs());
-      impl->reach = std::max(impl->reach, far.norm());
+              .cwiseMax((shape->peak_point - e - Eigen::Vector2d::Ones()).cwiseAbs());
+      shape->largest_reach = std::max(shape->largest_reach, far.norm());
     }
     auto pixels = std::make_shared<const std::vector<uint8_t>>(inside);
-    impl->distance = [edge, pixels, width, height, x0 = b.x0 - 1,
-                      y0 = b.y0 - 1](const Eigen::Vector2d& p) {
+    shape->distance_at = [edge, pixels, width, height, x0 = b.x0 - 1,
+                          y0 = b.y0 - 1](const Eigen::Vector2d& p) {
       const double px = std::floor(p.x()) - x0, py = std::floor(p.y()) - y0;
       if (px >= 0 && py >= 0 && px < width && py < height &&
           (*pixels)[size_t(py) * size_t(width) + size_t(px)])
@@ -194,7 +194,7 @@ std::vector<Region> Region::from_mask(const Image& mask) {
       }
       return std::sqrt(best);
     };
-    regions.push_back(Region(std::move(impl)));
+    regions.push_back(Region(std::move(shape)));
   }
   return regions;
 }

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "lens/zoom_match.h"
 
 namespace geolens {
 
@@ -58,65 +61,34 @@ double initial_height(const Lens& lens, LensModel model, double cell) {
 LensResult calibrate(const std::vector<Lens>& lenses, LensModel model, std::vector<double> h,
                      double tolerance, int max_solves,
                      const std::function<LensResult(const std::vector<double>&, int)>& run) {
-  const size_t n = lenses.size();
-  // Per lens, a bracket [lo, hi] of heights on f(h) = log(zoom(h)) - log(target), f(0) < 0,
-  // refined by false position (Illinois variant: an end kept twice has its f halved).
-  std::vector<double> lo(n, 0), hi(n, -1), f_lo(n), f_hi(n, 0);
-  std::vector<int> last_side(n, 0);
-  for (size_t k = 0; k < n; ++k) f_lo[k] = -std::log(lenses[k].zoom);
+  std::vector<double> targets;
+  for (const Lens& lens : lenses) targets.push_back(lens.zoom);
   StageTimings sum;
-  LensResult best;
-  double best_miss = std::numeric_limits<double>::infinity();
-  for (int solve = 1;; ++solve) {
-    LensResult r = run(h, solve);
-    sum.lift += r.timings.lift;
-    sum.texture += r.timings.texture;
-    sum.factorize += r.timings.factorize;
-    sum.iterate += r.timings.iterate;
-    sum.total += r.timings.total;
-    // Keep the solve whose worst lens is closest to its zoom, should calibration not converge.
-    double miss = 0;
-    for (size_t k = 0; k < n; ++k)
-      miss = std::max(miss, std::abs(std::log(r.zoom_measured[k] / lenses[k].zoom)));
-    bool done = true;
-    for (size_t k = 0; k < n; ++k) {
-      if (h[k] == 0) continue;
-      const double gain = std::log(r.zoom_measured[k]);
-      const double f = gain - std::log(lenses[k].zoom);
-      if (std::abs(f) <= std::log1p(tolerance)) continue;
-      done = false;
-      const int side = f < 0 ? -1 : 1;
-      if (side < 0) {
-        lo[k] = h[k];
-        f_lo[k] = f;
-        if (last_side[k] < 0) f_hi[k] *= 0.5;
-      } else {
-        hi[k] = h[k];
-        f_hi[k] = f;
-        if (last_side[k] > 0) f_lo[k] *= 0.5;
-      }
-      last_side[k] = side;
-      if (hi[k] < 0) {
-        // No upper end yet: scale the height by the first guess's ratio between the zoom
-        // wanted and the zoom reached (the guess's curve through h = 0), at most doubling.
-        h[k] = gain > 0
-                   ? std::min(2.0 * h[k], h[k] * height_for_zoom(lenses[k], model, lenses[k].zoom) /
-                                              height_for_zoom(lenses[k], model, std::exp(gain)))
-                   : 2.0 * h[k];
-      } else {
-        h[k] = lo[k] + (hi[k] - lo[k]) * f_lo[k] / (f_lo[k] - f_hi[k]);
-      }
-      h[k] = std::min(h[k], height_cap(lenses[k], model));
-    }
-    if (miss < best_miss) {
-      best_miss = miss;
-      best = std::move(r);
-    }
-    if (done || solve >= max_solves || model == LensModel::kFocus) {
-      best.solves = solve;
-      break;
-    }
-  }
+  int solves = 0;
+  LensResult best = match_zooms<LensResult>(
+      std::move(h), targets, tolerance,
+      // A focus lens's zoom is its focus's scale, not a result to aim for: one solve.
+      model == LensModel::kFocus ? 1 : max_solves,
+      [&](const std::vector<double>& heights, int solve) {
+        LensResult r = run(heights, solve);
+        sum.lift += r.timings.lift;
+        sum.texture += r.timings.texture;
+        sum.factorize += r.timings.factorize;
+        sum.iterate += r.timings.iterate;
+        sum.total += r.timings.total;
+        return r;
+      },
+      [](const LensResult& r, size_t k) { return r.zoom_measured[k]; },
+      // No height known above the root: scale the height by the first guess's ratio between the
+      // zoom wanted and the zoom reached (the guess's curve through h = 0), at most doubling.
+      [&](size_t k, const ZoomProbe& p) {
+        const double gain = p.f + std::log(targets[k]);
+        if (gain <= 0) return 2.0 * p.x;
+        return std::min(2.0 * p.x, p.x * height_for_zoom(lenses[k], model, targets[k]) /
+                                       height_for_zoom(lenses[k], model, std::exp(gain)));
+      },
+      [&](size_t k) { return height_cap(lenses[k], model); }, solves);
+  best.solves = solves;
   best.timings = sum;
   return best;
 }

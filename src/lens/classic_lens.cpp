@@ -12,6 +12,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/measure/distortion.h"
+#include "lens/zoom_match.h"
 
 namespace geolens {
 
@@ -320,9 +321,9 @@ WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, d
                   width, height);
 }
 
-MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
-                                      const std::vector<double>& measure_radius, double width,
-                                      double height, int vertices_long_side) {
+Magnification match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
+                                 const std::vector<double>& measure_radius, double width,
+                                 double height, int vertices_long_side) {
   require_mesh_vertices(vertices_long_side, "match_classic_lens");
   validate_lenses(targets, width, height, "match_classic_lens");
   require(measure_radius.size() == targets.size(), "match_classic_lens",
@@ -332,42 +333,36 @@ MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<Circle
             "measure radius must be finite and > 0, got " + std::to_string(radius));
   // The rings do not depend on the zoom, so one mesh serves every build.
   const PlanarMesh mesh = ringed_grid(width, height, vertices_long_side, lens_rings(targets));
-  const size_t n = targets.size();
-  std::vector<CircleLens> lenses = targets;
-  // Per lens, the previous (log z, log measured - log target) for the secant step.
-  std::vector<double> x_previous(n), f_previous(n);
-  MatchedClassicLens best;
-  double best_miss = std::numeric_limits<double>::infinity();
-  for (int build = 0; build < 20; ++build) {
-    MatchedClassicLens m;
-    m.warp = evaluate(kind, mesh, lenses, width, height);
-    const TriangleDistortion measures = measure_triangles(m.warp);
-    double miss = 0;
-    std::vector<double> f(n);
-    for (size_t k = 0; k < n; ++k) {
-      m.zoom_parameter.push_back(lenses[k].zoom);
-      m.zoom_measured.push_back(
-          magnification_at(m.warp, measures, targets[k].center, measure_radius[k]));
-      f[k] = std::log(m.zoom_measured[k] / targets[k].zoom);
-      miss = std::max(miss, std::abs(f[k]));
-    }
-    if (miss < best_miss) {
-      best_miss = miss;
-      best = std::move(m);
-    }
-    if (miss <= std::log(1.005)) break;
-    for (size_t k = 0; k < n; ++k) {
-      // log(measured) grows about one for one with log(z): start with slope 1, then secant.
-      const double x = std::log(lenses[k].zoom);
-      double slope = 1;
-      if (build > 0 && x != x_previous[k] && f[k] != f_previous[k])
-        slope = std::clamp((f[k] - f_previous[k]) / (x - x_previous[k]), 0.1, 10.0);
-      x_previous[k] = x;
-      f_previous[k] = f[k];
-      lenses[k].zoom = std::exp(std::max(0.0, x - f[k] / slope));
-    }
+  // The parameter is log z: 0 is the identity, and log(measured) grows about one for one with it.
+  std::vector<double> log_z, zooms;
+  for (const CircleLens& target : targets) {
+    log_z.push_back(std::log(target.zoom));
+    zooms.push_back(target.zoom);
   }
-  return best;
+  int builds = 0;
+  return match_zooms<Magnification>(
+      std::move(log_z), zooms, 0.005, 20,
+      [&](const std::vector<double>& x, int) {
+        std::vector<CircleLens> lenses = targets;
+        Magnification m;
+        for (size_t k = 0; k < lenses.size(); ++k) {
+          lenses[k].zoom = std::exp(x[k]);
+          m.zoom_parameter.push_back(lenses[k].zoom);
+        }
+        m.warp = evaluate(kind, mesh, lenses, width, height);
+        const TriangleDistortion measures = measure_triangles(m.warp);
+        for (size_t k = 0; k < lenses.size(); ++k)
+          m.zoom_measured.push_back(
+              magnification_at(m.warp, measures, targets[k].center, measure_radius[k]));
+        return m;
+      },
+      [](const Magnification& m, size_t k) { return m.zoom_measured[k]; },
+      // Below the root: a secant step through the point before (the identity at first).
+      [](size_t, const ZoomProbe& p) {
+        const double slope = std::clamp((p.f - p.f_before) / (p.x - p.x_before), 0.1, 10.0);
+        return p.x - p.f / slope;
+      },
+      [](size_t) { return std::numeric_limits<double>::infinity(); }, builds);
 }
 
 }  // namespace geolens

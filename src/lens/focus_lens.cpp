@@ -93,7 +93,7 @@ struct Ring {
     centre = c;
     const double reach = group.reach + (centre - group.centre).norm() + near;
     if (group.lenses.size() == 1 && centre == group.centre &&
-        lenses[group.lenses[0]].region.kind() == RegionKind::kCircle) {
+        lenses[group.lenses[0]].region.circle()) {
       inner_.assign(1, reach);
       return;
     }
@@ -382,7 +382,7 @@ FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
 
 bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {
   return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {
-    return lens.region.kind() == RegionKind::kCircle && lens.region.size() >= 3 * cell;
+    return lens.region.circle() && lens.region.size() >= 3 * cell;
   });
 }
 

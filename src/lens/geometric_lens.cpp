@@ -127,7 +127,7 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
 LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
   if (options_.model != LensModel::kAuto) return options_.model;
   for (const Lens& lens : lenses)
-    if (lens.region.kind() != RegionKind::kCircle) return LensModel::kField;
+    if (!lens.region.circle()) return LensModel::kField;
   return LensModel::kLift;
 }
 
@@ -241,10 +241,11 @@ void GeometricLens::finish(const std::vector<Lens>& lenses, const Lifted& lifted
   r.warp.screen_height = int(std::lround(height_));
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
   if (!r.box.isApprox(image)) add_identity_frame(r.warp, r.mesh, r.box, width_, height_);
-  const double cell = cell_size(r.box, options_.mesh);
   for (const Lens& lens : lenses) {
-    const double radius = std::max(cell, 0.05 * lens.region.size());
+    const double radius =
+        zoom_measure_radius(lens.region.size(), r.box.sizes().maxCoeff(), options_.mesh);
     r.zoom_measured.push_back(magnification_at(r.warp, lens.region.peak(), radius));
+    r.zoom_parameter.push_back(lens.zoom);
   }
   r.solves = 1;
 }

@@ -15,13 +15,11 @@ void validate_lens(const Lens& lens, double width, double height) {
     return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
   };
   const std::string image = std::to_string(int(width)) + "x" + std::to_string(int(height));
-  if (lens.region.kind() == RegionKind::kCircle) {
-    require(inside(lens.region.peak()), "validate_lens",
-            "lens centre " + where(lens.region.peak()) + " is outside the " + image + " image");
-  }
-  for (const Eigen::Vector2d& v : lens.region.vertices()) {
+  // A circle's centre, a polygon's vertices: the points that define the region.
+  const std::string what = lens.region.circle() ? "lens centre" : lens.region.kind() + " vertex";
+  for (const Eigen::Vector2d& v : lens.region.anchors()) {
     require(inside(v), "validate_lens",
-            "polygon vertex " + where(v) + " is outside the " + image + " image");
+            what + " " + where(v) + " is outside the " + image + " image");
   }
   require(std::isfinite(lens.zoom) && lens.zoom >= 1 && lens.zoom <= 8, "validate_lens",
           "zoom must be in [1, 8], got " + std::to_string(lens.zoom));

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "geolens/core/errors.h"
@@ -105,6 +106,11 @@ double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, doub
     weight += t.source_area;
   }
   return weight > 0 ? sum / weight : 0.0;
+}
+
+double zoom_measure_radius(double region_size, double solved_side, int mesh) {
+  require(mesh >= 2, "zoom_measure_radius", "mesh must be >= 2, got " + std::to_string(mesh));
+  return std::max(solved_side / (mesh - 1), 0.05 * region_size);
 }
 
 DistortionSummary summarize(const TriangleDistortion& measures) {

@@ -102,7 +102,7 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
     EXPECT_EQ(m.at("name").get<std::string>(), kMethods[i]);
     EXPECT_EQ(m.size(), 7u);
     ASSERT_EQ(m.at("lenses").size(), 1u);
-    EXPECT_GE(m.at("lenses")[0].at("uniformity").get<double>(), 1);
+    EXPECT_GE(m.at("lenses")[0].at("focus").at("uniformity").get<double>(), 1);
     EXPECT_NEAR(m.at("zoom_center").get<double>() / geometric_zoom, 1, 0.05);
     EXPECT_GE(m.at("focus_uniformity").get<double>(), 1);
     const nlohmann::json& d = m.at("distortion");
@@ -168,8 +168,8 @@ TEST_F(CompareCli, PolygonLensIsMeasuredAlone) {
   ASSERT_EQ(methods.size(), 1u);
   EXPECT_EQ(methods[0].at("name"), "geometric");
   const nlohmann::json& lens = methods[0].at("lenses")[0];
-  EXPECT_NEAR(lens.at("zoom").get<double>(), 2, 0.05);
-  EXPECT_LT(lens.at("uniformity").get<double>(), 1.05);
+  EXPECT_NEAR(lens.at("focus").at("zoom").get<double>(), 2, 0.05);
+  EXPECT_LT(lens.at("focus").at("uniformity").get<double>(), 1.05);
   EXPECT_EQ(lens.at("displacement_beyond_footprint").get<double>(), 0);
   EXPECT_FALSE(fs::exists(fs::path(out) / "fisheye.png"));
 }
@@ -187,16 +187,16 @@ TEST_F(CompareCli, FocusLensAgainstClassicLensesOfTheSameFootprint) {
   const nlohmann::json methods = report(out).at("methods");
   ASSERT_EQ(methods.size(), std::size(kMethods));
   const nlohmann::json& geometric = methods[0].at("lenses")[0];
-  EXPECT_NEAR(geometric.at("zoom").get<double>(), 2, 0.02);
-  EXPECT_LT(geometric.at("uniformity").get<double>(), 1.01);
-  EXPECT_LT(geometric.at("shape_max").get<double>(), 0.01);
+  EXPECT_NEAR(geometric.at("focus").at("zoom").get<double>(), 2, 0.02);
+  EXPECT_LT(geometric.at("focus").at("uniformity").get<double>(), 1.01);
+  EXPECT_LT(geometric.at("focus").at("shape_max").get<double>(), 0.01);
   EXPECT_EQ(geometric.at("displacement_beyond_footprint").get<double>(), 0);
   auto worst = [](const nlohmann::json& m) {
     return m.at("distortion").at("overall").at("max").get<double>();
   };
   for (size_t i : {4, 5, 6}) {  // bifocal, flat-top linear, flat-top cosine
     SCOPED_TRACE(kMethods[i]);
-    EXPECT_NEAR(methods[i].at("lenses")[0].at("uniformity").get<double>(), 1, 1e-9);
+    EXPECT_NEAR(methods[i].at("lenses")[0].at("focus").at("uniformity").get<double>(), 1, 1e-9);
     EXPECT_LT(worst(methods[0]), worst(methods[i]));
   }
   EXPECT_GT(worst(methods[0]), worst(methods[7]));  // no lens beats the bound

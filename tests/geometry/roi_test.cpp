@@ -75,8 +75,9 @@ TEST(PolygonRegion, ManySidedRegularPolygonBehavesLikeACircle) {
   const double r = 100;
   const Points poly = regular_polygon(c, r, 64);
   const Region region = Region::polygon(poly);
-  EXPECT_EQ(region.kind(), RegionKind::kPolygon);
-  EXPECT_EQ(region.vertices(), poly);
+  EXPECT_EQ(region.kind(), "polygon");
+  EXPECT_EQ(region.anchors(), poly);
+  EXPECT_FALSE(region.circle());
   EXPECT_LE((region.peak() - c).norm(), 1.5);
   EXPECT_NEAR(region.size(), r, 1.5);
   for (int k = 0; k < 16; ++k) {
@@ -262,8 +263,9 @@ TEST(MaskRegion, EachBlobIsARegionWithItsOwnBoundsAndDepth) {
   const double radii[] = {30, 20};
   for (int k = 0; k < 2; ++k) {
     const Region& r = regions[size_t(k)];
-    EXPECT_EQ(r.kind(), RegionKind::kMask);
-    EXPECT_TRUE(r.vertices().empty());
+    EXPECT_EQ(r.kind(), "mask");
+    EXPECT_TRUE(r.anchors().empty());
+    EXPECT_FALSE(r.circle());
     const Eigen::Vector2d c = centres[k];
     const double radius = radii[k];
     // Every pixel whose centre is inside the disc, as pixel squares.

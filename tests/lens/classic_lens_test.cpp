@@ -235,7 +235,7 @@ TEST(Baselines, MatchingReachesTheTargetZoomWithTheSameMeasure) {
   const std::vector<double> radius = {9, 5};
   for (ClassicLens kind : kClassicLenses) {
     SCOPED_TRACE(to_string(kind));
-    const MatchedClassicLens m = match_classic_lens(kind, targets, radius, 500, 400, 150);
+    const Magnification m = match_classic_lens(kind, targets, radius, 500, 400, 150);
     const TriangleDistortion measures = measure_triangles(m.warp);
     for (size_t k = 0; k < targets.size(); ++k) {
       EXPECT_NEAR(m.zoom_measured[k] / targets[k].zoom, 1, 0.005);

@@ -377,3 +377,64 @@ TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// A kind of region the library does not know: two regions taken as one (a multipolygon), written
+// here against RegionShape alone.
+class Pair final : public RegionShape {
+ public:
+  Pair(Region a, Region b) : a_(std::move(a)), b_(std::move(b)) {}
+  std::string kind() const override { return "pair"; }
+  Eigen::AlignedBox2d bounds() const override { return a_.bounds().merged(b_.bounds()); }
+  Eigen::Vector2d peak() const override { return larger().peak(); }
+  double size() const override { return larger().size(); }
+  double reach() const override {
+    const Region& l = larger();
+    const Region& o = &l == &a_ ? b_ : a_;
+    return std::max(l.reach(), (o.peak() - l.peak()).norm() + o.reach());
+  }
+  double depth(const Eigen::Vector2d& p) const override {
+    return std::max(a_.depth(p), b_.depth(p));
+  }
+  double thickness(const Eigen::Vector2d& p) const override {
+    return a_.depth(p) >= b_.depth(p) ? a_.thickness(p) : b_.thickness(p);
+  }
+  double distance(const Eigen::Vector2d& p) const override {
+    return std::min(a_.distance(p), b_.distance(p));
+  }
+  std::vector<Eigen::Vector2d> anchors() const override {
+    std::vector<Eigen::Vector2d> all = a_.anchors();
+    for (const Eigen::Vector2d& v : b_.anchors()) all.push_back(v);
+    return all;
+  }
+
+ private:
+  const Region& larger() const { return a_.size() >= b_.size() ? a_ : b_; }
+  Region a_, b_;
+};
+
+// Both parts of the pair are magnified as one focus, uniformly, by the zoom asked, with nothing
+// folded: no switch in the library had to learn the new kind.
+TEST(FocusLens, ARegionKindFromOutsideTheLibraryIsMagnifiedAsAWhole) {
+  auto square = [](double x, double y, double side) {
+    return Region::polygon({{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}});
+  };
+  const Region pair(std::make_shared<Pair>(square(380, 420, 110), square(540, 440, 90)));
+  EXPECT_EQ(pair.kind(), "pair");
+  EXPECT_EQ(pair.anchors().size(), 8u);
+  const Lens lens{pair, 2.0};
+  const LensResult r = GeometricLens(1024, 1024).solve({lens});
+  const TriangleDistortion measures = measure_triangles(r.warp);
+  const FocusMeasure f = measure_foci(r.warp, measures, {lens}).front();
+  EXPECT_NEAR(f.zoom, 2.0, 0.1);
+  EXPECT_LE(f.uniformity, 1.15);
+  EXPECT_EQ(summarize(measures).flipped, 0);
+  // A vertex outside the image is refused like a polygon's.
+  const Region off(std::make_shared<Pair>(square(380, 420, 110), square(990, 440, 90)));
+  EXPECT_THROW(GeometricLens(1024, 1024).solve({Lens{off, 2.0}}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace geolens

@@ -17,7 +17,7 @@ TEST_F(LensSpec, CircleWithAndWithoutZoom) {
   const std::vector<Lens> a =
       parse_lens_spec("circle:50,60,20:3", 2, Profile::kGaussian, 0, 200, 100);
   ASSERT_EQ(a.size(), 1u);
-  EXPECT_EQ(a[0].region.kind(), RegionKind::kCircle);
+  EXPECT_EQ(a[0].region.kind(), "circle");
   EXPECT_EQ(a[0].region.peak(), Eigen::Vector2d(50, 60));
   EXPECT_EQ(a[0].region.size(), 20);
   EXPECT_EQ(a[0].zoom, 3);
@@ -33,7 +33,7 @@ TEST_F(LensSpec, PolygonAndMaskFilesAreRead) {
   const std::vector<Lens> p =
       parse_lens_spec("polygon:" + polygon + ":2", 2, Profile::kGaussian, 0, 200, 100);
   ASSERT_EQ(p.size(), 1u);
-  EXPECT_EQ(p[0].region.kind(), RegionKind::kPolygon);
+  EXPECT_EQ(p[0].region.kind(), "polygon");
   EXPECT_EQ(lens_spec_file("polygon:" + polygon + ":2")->path, polygon);
   // Two blobs, one lens each.
   Image mask(200, 100, 1);

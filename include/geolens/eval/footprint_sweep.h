@@ -26,6 +26,10 @@ struct Sweep {
   std::vector<SweepPoint> points;
 };
 
+/// The footprint ratios a sweep of a lens of `zoom` takes by default (`geolens compare --sweep`):
+/// zoom + 1, 1.5, 2, 3 and 4 x zoom, ascending, without repeats.
+std::vector<double> sweep_ratios(double zoom);
+
 /// Solves `lens` with the focus model (its other options from `options`) at every footprint
 /// ratio in `ratios` (each > the lens's zoom) on a width x height image, and, for a circle, every
 /// classic lens with the footprint as radius and a flat top of the region's size, matched to the

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,35 @@ namespace geolens {
 
 struct Image;
 
-enum class RegionKind { kCircle, kPolygon, kMask };
-std::string to_string(RegionKind kind);  ///< "circle" | "polygon" | "mask"
+/// A circle, for what treats circles specially (a mesh that follows them, the radial lenses).
+struct Circle {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< pixels
+  double radius = 1;                                 ///< pixels, > 0
+};
+
+/// What a kind of region answers (the fields are those of Region, below). geolens's own are the
+/// circle, the simple polygon and the mask blob; implement this to add another (a polygon with
+/// holes, several polygons as one region, an analytic shape) and wrap it in a Region: nothing in
+/// the lenses, measures or reports switches on the kind. Implementations are immutable and
+/// their calls thread-safe.
+class RegionShape {
+ public:
+  virtual ~RegionShape() = default;
+  /// A short name: "circle", "polygon", "mask", ... (reports print it).
+  virtual std::string kind() const = 0;
+  virtual Eigen::AlignedBox2d bounds() const = 0;
+  virtual Eigen::Vector2d peak() const = 0;
+  virtual double size() const = 0;
+  virtual double reach() const = 0;
+  virtual double depth(const Eigen::Vector2d& p) const = 0;
+  virtual double thickness(const Eigen::Vector2d& p) const = 0;
+  virtual double distance(const Eigen::Vector2d& p) const = 0;
+  /// The points that define the region and must lie in the image for a lens on it: a circle's
+  /// centre, a polygon's vertices; none for a mask blob (it comes from an image of that size).
+  virtual std::vector<Eigen::Vector2d> anchors() const = 0;
+  /// The circle the region is, if it is one.
+  virtual std::optional<Circle> circle() const { return std::nullopt; }
+};
 
 /// A region of interest in source pixels, with the two fields the lift needs at any point p:
 ///
@@ -36,8 +64,12 @@ class Region {
   /// Every 8-connected blob of non-zero pixels of `mask` (first channel), one region each, in
   /// raster order of their first pixel. Throws InvalidInput for an empty mask.
   static std::vector<Region> from_mask(const Image& mask);
+  /// Any other kind of region; throws InvalidInput for a null shape.
+  explicit Region(std::shared_ptr<const RegionShape> shape);
 
-  RegionKind kind() const;
+  std::string kind() const;  ///< RegionShape::kind
+  /// The circle the region is, if it is one.
+  std::optional<Circle> circle() const;
   /// Bounding box, pixels.
   Eigen::AlignedBox2d bounds() const;
   /// Where the depth is largest and the region thickest: the centre of a circle, the point of
@@ -54,14 +86,11 @@ class Region {
   /// The largest distance from peak() to a point of the region, pixels: the radius of a
   /// circle, half the length of a thin strip measured from its middle.
   double reach() const;
-  /// For polygons: the vertices; empty otherwise.
-  const std::vector<Eigen::Vector2d>& vertices() const;
-
-  struct Impl;
+  /// RegionShape::anchors: a circle's centre, a polygon's vertices, nothing for a mask blob.
+  std::vector<Eigen::Vector2d> anchors() const;
 
  private:
-  explicit Region(std::shared_ptr<const Impl> impl);
-  std::shared_ptr<const Impl> impl_;  // immutable, so copies share it
+  std::shared_ptr<const RegionShape> shape_;  // immutable, so copies share it
 };
 
 }  // namespace geolens

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geolens/geometry/grid.h"
+#include "geolens/lens/magnification.h"
 #include "geolens/measure/distortion_regions.h"
 #include "geolens/warp/warp_mesh.h"
 
@@ -97,21 +98,15 @@ PlanarMesh ringed_grid(double width, double height, int vertices_long_side,
 WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, double width,
                       double height, int vertices_long_side = 200);
 
-/// A classic lens matched to target zooms, and what it measured.
-struct MatchedClassicLens {
-  WarpMesh warp;
-  std::vector<double> zoom_parameter;  ///< per lens: the z the lens was built with
-  std::vector<double> zoom_measured;   ///< per lens: magnification_at its centre
-};
-
 /// Finds each lens's zoom parameter z such that magnification_at(warp, centre,
 /// measure_radius[k]) (distortion.h, the same measure as the geometric lens's zoom_measured)
 /// equals targets[k].zoom within 0.5 % (secant steps on log z, at most 20 builds), and returns
-/// the warp built with them. A lens whose gain peaks at the centre (the fisheyes) needs a z above
+/// the warp built with them (zoom_parameter: the z per lens, zoom_measured: the measure at its
+/// centre). A lens whose gain peaks at the centre (the fisheyes) needs a z above
 /// the target, because the measure averages a small disk around the centre.
 /// @param measure_radius  per lens, pixels (> 0)
-MatchedClassicLens match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
-                                      const std::vector<double>& measure_radius, double width,
-                                      double height, int vertices_long_side = 200);
+Magnification match_classic_lens(ClassicLens kind, const std::vector<CircleLens>& targets,
+                                 const std::vector<double>& measure_radius, double width,
+                                 double height, int vertices_long_side = 200);
 
 }  // namespace geolens

@@ -13,6 +13,7 @@
 #include "geolens/geometry/subdivide.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/lift.h"
+#include "geolens/lens/magnification.h"
 #include "geolens/lens/texture_map.h"
 #include "geolens/warp/warp_mesh.h"
 
@@ -75,9 +76,10 @@ struct StageTimings {
   double lift = 0, texture = 0, factorize = 0, iterate = 0, total = 0;
 };
 
-struct LensResult {
+/// The geometric lens's answer: the Magnification every lens method returns (the warp's source
+/// is the texture coordinates, its screen the framed flattening), and how it was found.
+struct LensResult : Magnification {
   LensModel model = LensModel::kLift;  ///< the model used (kAuto resolved)
-  WarpMesh warp;                       ///< source = texture coordinates, screen = framed flattening
   PlanarMesh mesh;                     ///< the (subdivided) planar mesh the lift was built on
   Eigen::AlignedBox2d box;             ///< the solved area: the image, or the local patch
   Eigen::MatrixX3d lifted;             ///< #V x 3 the lifted mesh of the final solve, pixels
@@ -85,7 +87,6 @@ struct LensResult {
   FlattenResult flattening;            ///< iterations and energies of the final solve
   /// per lens: calibrated centre height h0, pixels; for kFocus the log zoom of its focus
   std::vector<double> heights;
-  std::vector<double> zoom_measured;  ///< per lens: magnification at its region's peak
   /// per lens (kFocus): the largest zoom that fits where the lens is (fitting_zoom in
   /// focus_lens.h); a lens that asks for more is solved at this zoom. Empty for other models.
   std::vector<double> zoom_fits;

@@ -29,6 +29,14 @@ double magnification_at(const WarpMesh& mesh, const TriangleDistortion& measures
 /// The same, measuring only the triangles it needs (for interactive use).
 double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, double radius);
 
+/// The radius over which a lens's zoom is measured at its peak (GeometricLens's
+/// LensResult::zoom_measured, and the classic lenses matched to it): a grid cell of the solved
+/// area, and at least 0.05 of the region's size (docs/design.md, "Zoom, not height"). Pixels.
+/// @param region_size  the region's size (Region::size), pixels
+/// @param solved_side  the long side of the solved area (LensResult::box), pixels
+/// @param mesh         grid vertices along that side (LensOptions::mesh), >= 2
+double zoom_measure_radius(double region_size, double solved_side, int mesh);
+
 struct DistortionSummary {
   double conformal_mean = 0;  ///< source-area-weighted mean of s1 / s2 - 1
   double conformal_max = 0;

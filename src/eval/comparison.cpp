@@ -1,0 +1,104 @@
+#include "geolens/eval/comparison.h"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "geolens/core/errors.h"
+#include "geolens/geometry/grid.h"
+#include "geolens/lens/classic_lens.h"
+#include "geolens/lens/focus_lens.h"
+#include "geolens/lens/lens_method.h"
+
+namespace geolens {
+
+namespace {
+
+bool all_circles(const std::vector<Lens>& lenses) {
+  return std::all_of(lenses.begin(), lenses.end(),
+                     [](const Lens& lens) { return lens.region.circle().has_value(); });
+}
+
+}  // namespace
+
+double classic_radius(const Lens& lens, const LensOptions& options) {
+  return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.reach()
+                                            : lens.region.size();
+}
+
+CircleLens classic_target(const Lens& lens, const LensOptions& options, double zoom) {
+  CircleLens target{lens.region.peak(), classic_radius(lens, options), zoom};
+  if (options.model == LensModel::kFocus)
+    target.focus_fraction = std::min(0.95, zoom / footprint_ratio(lens));
+  return target;
+}
+
+std::vector<std::string> comparison_methods(const std::vector<Lens>& lenses,
+                                            const LensOptions& options, const char* function) {
+  std::vector<std::string> names = {"geometric"};
+  if (!all_circles(lenses)) return names;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    for (size_t j = 0; j < k; ++j) {
+      require((lenses[k].region.peak() - lenses[j].region.peak()).norm() >=
+                  classic_radius(lenses[k], options) + classic_radius(lenses[j], options),
+              function,
+              "lenses " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
+                  " overlap; compare needs disjoint circles");
+    }
+  }
+  for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
+  return names;
+}
+
+Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses,
+                          const LensOptions& options, int baseline_mesh) {
+  require(!lenses.empty(), "compare_lenses", "needs at least one lens");
+  require(width > 0 && height > 0, "compare_lenses",
+          "source size must be positive, got " + std::to_string(width) + " x " +
+              std::to_string(height));
+  require_mesh_vertices(baseline_mesh, "compare_lenses");
+  const bool classic = comparison_methods(lenses, options, "compare_lenses").size() > 1;
+
+  // The geometric lens, then the classic lenses matched to its measured zoom, over the same disk.
+  Comparison c;
+  c.width = width;
+  c.height = height;
+  c.lenses = lenses;
+  c.geometric = GeometricLens(width, height, options).solve(lenses);
+  std::vector<double> measure_radius;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    c.targets.push_back(
+        classic_target(lenses[k], options, std::max(1.0, c.geometric.zoom_measured[k])));
+    measure_radius.push_back(zoom_measure_radius(lenses[k].region.size(),
+                                                 c.geometric.box.sizes().maxCoeff(), options.mesh));
+  }
+  c.methods.push_back({"geometric", c.geometric.warp, c.geometric.zoom_measured, {}, {}, {}});
+  // Each classic lens through the one lens call, on the targets as Lenses, measured over the
+  // geometric lens's radius.
+  std::vector<Lens> classic_lenses;
+  for (const CircleLens& target : c.targets)
+    classic_lenses.push_back(ClassicMethod::lens_for(target));
+  for (ClassicLens kind : kClassicLenses) {
+    if (!classic) break;
+    const ClassicMethod method(kind, {baseline_mesh, measure_radius});
+    Magnification matched = method.magnify(classic_lenses, width, height);
+    c.methods.push_back(
+        {method.name(), std::move(matched.warp), std::move(matched.zoom_measured), {}, {}, {}});
+  }
+  for (ComparedMethod& m : c.methods) {
+    m.measures = measure_triangles(m.warp);
+    m.regions = measure_regions(m.warp, m.measures, c.targets, width, height);
+    m.foci = measure_foci(m.warp, m.measures, lenses);
+  }
+  c.eq7_energy = eq7_energy(c.geometric.lifted, c.geometric.mesh.F, c.geometric.flat).sum();
+  return c;
+}
+
+double comparison_heat_max(const Comparison& comparison) {
+  double heat_max = 0;
+  for (const ComparedMethod& m : comparison.methods)
+    heat_max = std::max(heat_max, m.regions.overall.conformal_max);
+  return heat_max > 0 ? heat_max : 1;  // 0: every method is the identity
+}
+
+}  // namespace geolens
