@@ -5,7 +5,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/numerics/windowed_cholesky.h"
+#include "numerics/windowed_cholesky.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/numerics/windowed_cholesky.h"
+#include "numerics/windowed_cholesky.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 namespace geolens {
 
-class WindowedCholesky;  // windowed_cholesky.h
+class WindowedCholesky;  // private: src/numerics/windowed_cholesky.h
 
 /// Solves A x = b for the free entries of x, the fixed entries given: the reduced system
 /// A_ff x_f = b_f - A_fc x_c. For a symmetric positive semidefinite A (n x n) with A_ff positive

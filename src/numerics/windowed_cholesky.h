@@ -1,5 +1,5 @@
 #pragma once
-// Sparse Cholesky that refactorizes only the window of unknowns whose rows change.
+// Private: sparse Cholesky that refactorizes only the window of unknowns whose rows change.
 
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
