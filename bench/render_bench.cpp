@@ -2,6 +2,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/render/render.h"
 #include "geolens/warp/warp_mesh.h"
@@ -27,28 +28,13 @@ const geolens::Image& source_image() {
   return image;
 }
 
-/// The identity warp of the source as an n x n vertex grid with alternating diagonals, framed
-/// for a screen of the source's size (rendering smaller minifies it).
+/// The identity warp of the source as an n x n vertex grid (make_grid's alternating diagonals),
+/// framed for a screen of the source's size (rendering smaller minifies it).
 geolens::WarpMesh identity_grid(int n, double side) {
+  const geolens::Grid grid = geolens::make_grid(side, side, n);
   geolens::WarpMesh mesh;
-  mesh.source.resize(n * n, 2);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      mesh.source.row(j * n + i) << side * i / (n - 1), side * j / (n - 1);
-  mesh.screen = mesh.source;
-  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        mesh.F.row(f++) << a, b, d;
-        mesh.F.row(f++) << a, d, c;
-      } else {
-        mesh.F.row(f++) << a, b, c;
-        mesh.F.row(f++) << b, d, c;
-      }
-    }
+  mesh.source = mesh.screen = grid.V;
+  mesh.F = grid.F;
   mesh.screen_width = mesh.screen_height = int(side);
   return mesh;
 }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/render/render.h"
 #include "geolens/source/tiled_source.h"
@@ -31,31 +32,14 @@ geolens::Image procedural_tile(const geolens::TileRequest& r) {
   return tile;
 }
 
-/// An n x n vertex grid (alternating diagonals) over the source window at (x0, y0) of side
-/// `side` source pixels, framed for a kOutputSide screen.
+/// An n x n vertex grid (make_grid's alternating diagonals) over the source window at (x0, y0)
+/// of side `side` source pixels, framed for a kOutputSide screen.
 geolens::WarpMesh window_grid(int n, double x0, double y0, double side) {
+  const geolens::Grid grid = geolens::make_grid(side, side, n);
   geolens::WarpMesh mesh;
-  mesh.source.resize(n * n, 2);
-  mesh.screen.resize(n * n, 2);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double s = double(i) / (n - 1), t = double(j) / (n - 1);
-      mesh.source.row(j * n + i) << x0 + side * s, y0 + side * t;
-      mesh.screen.row(j * n + i) << kOutputSide * s, kOutputSide * t;
-    }
-  mesh.F.resize(2 * (n - 1) * (n - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        mesh.F.row(f++) << a, b, d;
-        mesh.F.row(f++) << a, d, c;
-      } else {
-        mesh.F.row(f++) << a, b, c;
-        mesh.F.row(f++) << b, d, c;
-      }
-    }
+  mesh.source = grid.V.rowwise() + Eigen::RowVector2d(x0, y0);
+  mesh.screen = grid.V * (kOutputSide / side);
+  mesh.F = grid.F;
   mesh.screen_width = mesh.screen_height = kOutputSide;
   return mesh;
 }

@@ -13,6 +13,7 @@
 
 #include "geolens/core/errors.h"
 #include "support/scratch_folder.h"
+#include "support/test_data.h"
 
 namespace fs = std::filesystem;
 using geolens::Image;
@@ -33,16 +34,6 @@ class ImageFileTest : public geolens::testing::ScratchFolderTest {
     return names;
   }
 };
-
-/// A pattern that uses every byte value and differs between channels.
-Image pattern(int width, int height, int channels) {
-  Image image(width, height, channels);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c)
-        image.at(x, y)[c] = uint8_t((x * 7 + y * 13 + c * 101 + x * y) % 256);
-  return image;
-}
 
 /// A smooth image (JPEG compresses it well).
 Image gradient(int width, int height, int channels) {
@@ -94,7 +85,7 @@ TEST(ImageTest, WritablePathsAreDecidedByExtensionIgnoringCase) {
 
 TEST_F(ImageFileTest, PngRoundTripIsLosslessForEveryChannelCount) {
   for (int channels = 1; channels <= 4; ++channels) {
-    const Image image = pattern(37, 23, channels);
+    const Image image = geolens::test::pattern(37, 23, channels);
     const std::string file = path("image" + std::to_string(channels) + ".png");
     geolens::save_image(file, image);
     const Image loaded = geolens::load_image(file);
@@ -107,9 +98,9 @@ TEST_F(ImageFileTest, PngRoundTripIsLosslessForEveryChannelCount) {
 }
 
 TEST_F(ImageFileTest, UpperCaseExtensionsWork) {
-  geolens::save_image(path("a.PNG"), pattern(8, 8, 3));
+  geolens::save_image(path("a.PNG"), geolens::test::pattern(8, 8, 3));
   geolens::save_image(path("b.JPEG"), gradient(8, 8, 3));
-  EXPECT_EQ(geolens::load_image(path("a.PNG")).pixels, pattern(8, 8, 3).pixels);
+  EXPECT_EQ(geolens::load_image(path("a.PNG")).pixels, geolens::test::pattern(8, 8, 3).pixels);
   EXPECT_EQ(geolens::load_image(path("b.JPEG")).width, 8);
 }
 
@@ -139,7 +130,7 @@ TEST_F(ImageFileTest, JpegDropsAlphaAndStoresColour) {
 }
 
 TEST_F(ImageFileTest, JpegQualityTradesSizeForError) {
-  const Image image = pattern(64, 64, 3);
+  const Image image = geolens::test::pattern(64, 64, 3);
   geolens::save_image(path("low.jpg"), image, 10);
   geolens::save_image(path("high.jpg"), image, 100);
   EXPECT_LT(fs::file_size(path("low.jpg")), fs::file_size(path("high.jpg")));
@@ -173,7 +164,7 @@ TEST_F(ImageFileTest, CorruptFilesThrowInvalidInput) {
   write_bytes(path("empty.jpg"), "");
   EXPECT_THROW(geolens::load_image(path("empty.jpg")), InvalidInput);
   // A real PNG cut short.
-  geolens::save_image(path("whole.png"), pattern(64, 64, 3));
+  geolens::save_image(path("whole.png"), geolens::test::pattern(64, 64, 3));
   std::ifstream in(path("whole.png"), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   write_bytes(path("cut.png"), bytes.substr(0, bytes.size() / 2));
@@ -182,13 +173,15 @@ TEST_F(ImageFileTest, CorruptFilesThrowInvalidInput) {
 }
 
 TEST_F(ImageFileTest, UnknownExtensionThrowsAndWritesNothing) {
-  EXPECT_THROW(geolens::save_image(path("a.bmp"), pattern(4, 4, 3)), InvalidInput);
-  EXPECT_THROW(geolens::save_image(path("noextension"), pattern(4, 4, 3)), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.bmp"), geolens::test::pattern(4, 4, 3)), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("noextension"), geolens::test::pattern(4, 4, 3)),
+               InvalidInput);
   EXPECT_TRUE(entries().empty());
 }
 
 TEST_F(ImageFileTest, MissingFolderThrowsAndWritesNothing) {
-  EXPECT_THROW(geolens::save_image(path("nowhere/a.png"), pattern(4, 4, 3)), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("nowhere/a.png"), geolens::test::pattern(4, 4, 3)),
+               InvalidInput);
   EXPECT_TRUE(entries().empty());
 }
 
@@ -197,15 +190,17 @@ TEST_F(ImageFileTest, InvalidImageOrQualityThrows) {
   broken.pixels.pop_back();
   EXPECT_THROW(geolens::save_image(path("a.png"), broken), InvalidInput);
   EXPECT_THROW(geolens::save_image(path("a.png"), Image()), InvalidInput);
-  EXPECT_THROW(geolens::save_image(path("a.jpg"), pattern(4, 4, 3), 0), InvalidInput);
-  EXPECT_THROW(geolens::save_image(path("a.jpg"), pattern(4, 4, 3), 101), InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.jpg"), geolens::test::pattern(4, 4, 3), 0),
+               InvalidInput);
+  EXPECT_THROW(geolens::save_image(path("a.jpg"), geolens::test::pattern(4, 4, 3), 101),
+               InvalidInput);
   EXPECT_TRUE(entries().empty());
 }
 
 TEST_F(ImageFileTest, FailedWriteThrowsIoErrorAndLeavesNoTemporary) {
   // The target is a non-empty folder: the final rename cannot replace it.
   fs::create_directories(dir_ / "taken.png" / "inside");
-  EXPECT_THROW(geolens::save_image(path("taken.png"), pattern(4, 4, 3)), IoError);
+  EXPECT_THROW(geolens::save_image(path("taken.png"), geolens::test::pattern(4, 4, 3)), IoError);
   EXPECT_EQ(entries(), std::vector<std::string>{"taken.png"});
   EXPECT_TRUE(fs::is_directory(dir_ / "taken.png"));
 }

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "support/test_data.h"
 
 using geolens::Image;
 using geolens::InvalidInput;
@@ -19,54 +20,10 @@ using geolens::WarpMesh;
 
 namespace {
 
-using ScreenOf = std::function<Eigen::Vector2d(const Eigen::Vector2d&)>;
-
-/// A cols x rows grid of vertices over the source rectangle [0, width] x [0, height], cells
-/// split along alternating diagonals, triangles counter-clockwise in source space; each vertex
-/// lands on the screen at screen_of(source).
-WarpMesh grid_mesh(int cols, int rows, double width, double height, const ScreenOf& screen_of,
-                   int screen_width, int screen_height) {
-  WarpMesh mesh;
-  mesh.source.resize(cols * rows, 2);
-  mesh.screen.resize(cols * rows, 2);
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < cols; ++i) {
-      const Eigen::Vector2d s(width * i / (cols - 1), height * j / (rows - 1));
-      mesh.source.row(j * cols + i) = s;
-      mesh.screen.row(j * cols + i) = screen_of(s);
-    }
-  mesh.F.resize(2 * (cols - 1) * (rows - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < rows; ++j)
-    for (int i = 0; i + 1 < cols; ++i) {
-      const int a = j * cols + i, b = a + 1, c = a + cols, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        mesh.F.row(f++) << a, b, d;
-        mesh.F.row(f++) << a, d, c;
-      } else {
-        mesh.F.row(f++) << a, b, c;
-        mesh.F.row(f++) << b, d, c;
-      }
-    }
-  mesh.screen_width = screen_width;
-  mesh.screen_height = screen_height;
-  return mesh;
-}
-
 /// The identity warp of a width x height source, framed for a screen of the same size.
 WarpMesh identity_mesh(int width, int height, int cols = 9, int rows = 7) {
-  return grid_mesh(
+  return geolens::test::grid_warp(
       cols, rows, width, height, [](const Eigen::Vector2d& s) { return s; }, width, height);
-}
-
-/// A pattern with every channel different and plenty of detail.
-Image pattern(int width, int height, int channels) {
-  Image image(width, height, channels);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c)
-        image.at(x, y)[c] = uint8_t((x * 7 + y * 13 + c * 101 + x * y) % 256);
-  return image;
 }
 
 /// A one-pixel grey checkerboard of 0 and 255.
@@ -128,7 +85,7 @@ double jitter(int i, int j) {
 // MipPyramid
 
 TEST(MipPyramidTest, LevelSizesHalveRoundingUpDownTo1x1) {
-  const MipPyramid pyramid(pattern(37, 10, 3));
+  const MipPyramid pyramid(geolens::test::pattern(37, 10, 3));
   ASSERT_EQ(pyramid.levels(), 7);  // 37x10, 19x5, 10x3, 5x2, 3x1, 2x1, 1x1
   EXPECT_EQ(pyramid.level(0).width, 37);
   EXPECT_EQ(pyramid.level(0).height, 10);
@@ -143,7 +100,7 @@ TEST(MipPyramidTest, LevelSizesHalveRoundingUpDownTo1x1) {
 }
 
 TEST(MipPyramidTest, LevelZeroIsTheSource) {
-  const Image source = pattern(20, 11, 4);
+  const Image source = geolens::test::pattern(20, 11, 4);
   EXPECT_EQ(MipPyramid(source).level(0).pixels, source.pixels);
 }
 
@@ -207,7 +164,7 @@ TEST(MipPyramidTest, SampleOfALinearRampIsExactAtLevelZero) {
 }
 
 TEST(MipPyramidTest, SampleClampsToTheEdge) {
-  const Image source = pattern(10, 6, 3);
+  const Image source = geolens::test::pattern(10, 6, 3);
   const MipPyramid pyramid(source);
   float out[3];
   pyramid.sample(-5.0, -7.0, 0.0, out);
@@ -238,7 +195,7 @@ TEST(MipPyramidTest, FractionalLodBlendsTheTwoAdjacentLevels) {
 }
 
 TEST(MipPyramidTest, LodClampsToThePyramid) {
-  const Image source = pattern(16, 16, 1);
+  const Image source = geolens::test::pattern(16, 16, 1);
   const MipPyramid pyramid(source);
   float coarsest, beyond, below, zero;
   pyramid.sample(3.0, 4.0, pyramid.levels() - 1, &coarsest);
@@ -263,7 +220,7 @@ TEST(MipPyramidTest, RejectsAnInvalidSource) {
 
 TEST(RenderTest, IdentityMeshReproducesTheImage) {
   for (int channels = 1; channels <= 4; ++channels) {
-    const Image source = pattern(64, 48, channels);
+    const Image source = geolens::test::pattern(64, 48, channels);
     const Image out =
         geolens::render(identity_mesh(64, 48), MipPyramid(source), options_for(64, 48));
     ASSERT_EQ(out.width, 64);
@@ -316,7 +273,7 @@ TEST(RenderTest, MinifiedPixelsMatchTrilinearSamplesAtTheJacobianLod) {
   // A uniform (and an anisotropic) minification: each output pixel is the trilinear sample at
   // its source point, at lod = log2 of the larger scale factor, so the fractional lod blends
   // two levels.
-  const MipPyramid pyramid(pattern(64, 64, 3));
+  const MipPyramid pyramid(geolens::test::pattern(64, 64, 3));
   const WarpMesh mesh = identity_mesh(64, 64);
   for (auto [width, height] : {std::pair{23, 23}, std::pair{40, 20}, std::pair{64, 37}}) {
     const Image out = geolens::render(mesh, pyramid, options_for(width, height));
@@ -338,7 +295,7 @@ TEST(RenderTest, TwoTimesMagnificationPutsAPixelWhereExpected) {
   Image source(32, 32, 1, 0);
   for (int y = 5; y <= 6; ++y)
     for (int x = 10; x <= 11; ++x) source.at(x, y)[0] = 255;
-  const WarpMesh mesh = grid_mesh(
+  const WarpMesh mesh = geolens::test::grid_warp(
       5, 5, 32, 32, [](const Eigen::Vector2d& s) { return Eigen::Vector2d(2 * s); }, 64, 64);
   const Image out = geolens::render(mesh, MipPyramid(source), options_for(64, 64));
   // Magnifying samples level 0: the block's interior stays fully white, far pixels black.
@@ -360,7 +317,7 @@ TEST(RenderTest, TwoTimesMagnificationPutsAPixelWhereExpected) {
 }
 
 TEST(RenderTest, MagnifiedRampIsInterpolatedLinearly) {
-  const WarpMesh mesh = grid_mesh(
+  const WarpMesh mesh = geolens::test::grid_warp(
       4, 4, 40, 20, [](const Eigen::Vector2d& s) { return Eigen::Vector2d(2 * s); }, 80, 40);
   const Image out = geolens::render(mesh, MipPyramid(ramp(40, 20)), options_for(80, 40));
   for (int py = 1; py < 39; ++py)
@@ -371,8 +328,8 @@ TEST(RenderTest, MagnifiedRampIsInterpolatedLinearly) {
 }
 
 TEST(RenderTest, TranslatedMeshMovesPixels) {
-  const Image source = pattern(30, 20, 3);
-  const WarpMesh mesh = grid_mesh(
+  const Image source = geolens::test::pattern(30, 20, 3);
+  const WarpMesh mesh = geolens::test::grid_warp(
       4, 3, 30, 20, [](const Eigen::Vector2d& s) { return Eigen::Vector2d(s.x() + 5, s.y() + 3); },
       40, 30);
   RenderOptions options = options_for(40, 30);
@@ -390,7 +347,7 @@ TEST(RenderTest, TranslatedMeshMovesPixels) {
 
 TEST(RenderTest, UncoveredPixelsGetTheBackground) {
   // The mesh covers exactly the left half of the screen.
-  const WarpMesh mesh = grid_mesh(
+  const WarpMesh mesh = geolens::test::grid_warp(
       3, 3, 16, 16, [](const Eigen::Vector2d& s) { return Eigen::Vector2d(s.x() / 2, s.y()); }, 16,
       16);
   RenderOptions options = options_for(16, 16);
@@ -409,7 +366,7 @@ TEST(RenderTest, UncoveredPixelsGetTheBackground) {
 }
 
 TEST(RenderTest, EitherOrientationRenders) {
-  const Image source = pattern(32, 24, 3);
+  const Image source = geolens::test::pattern(32, 24, 3);
   const MipPyramid pyramid(source);
   WarpMesh mesh = identity_mesh(32, 24);
   const Image reference = geolens::render(mesh, pyramid, options_for(32, 24));
@@ -427,7 +384,7 @@ TEST(RenderTest, EitherOrientationRenders) {
 }
 
 TEST(RenderTest, DegenerateTrianglesAreSkipped) {
-  const MipPyramid pyramid(pattern(32, 24, 3));
+  const MipPyramid pyramid(geolens::test::pattern(32, 24, 3));
   const WarpMesh mesh = identity_mesh(32, 24);
   WarpMesh padded = mesh;
   const Eigen::Index n = mesh.F.rows();
@@ -449,7 +406,7 @@ TEST(RenderTest, TrianglesReachingFarOffScreenAreClipped) {
   mesh.F << 0, 1, 2, 0, 2, 3;
   mesh.screen_width = 40;
   mesh.screen_height = 30;
-  const Image source = pattern(40, 30, 3);
+  const Image source = geolens::test::pattern(40, 30, 3);
   const Image out = geolens::render(mesh, MipPyramid(source), options_for(40, 30));
   EXPECT_LE(max_abs_diff(out, source), 1);
 }
@@ -466,7 +423,7 @@ TEST(RenderTest, ExtremeSourceCoordinatesClampToTheImage) {
 
 TEST(RenderTest, ResultDoesNotDependOnTheThreadCountAndLaterTrianglesDrawOnTop) {
   // A folded mesh: an extra triangle overlaps the grid and must win wherever it covers.
-  WarpMesh mesh = grid_mesh(
+  WarpMesh mesh = geolens::test::grid_warp(
       12, 12, 64, 64,
       [](const Eigen::Vector2d& s) {
         const Eigen::Vector2d d = s - Eigen::Vector2d(32, 32);
@@ -476,7 +433,7 @@ TEST(RenderTest, ResultDoesNotDependOnTheThreadCountAndLaterTrianglesDrawOnTop) 
   const Eigen::Index n = mesh.F.rows();
   mesh.F.conservativeResize(n + 1, 3);
   mesh.F.row(n) << 0, 11, 143;  // the whole source square's diagonal half, drawn last
-  const MipPyramid pyramid(pattern(64, 64, 3));
+  const MipPyramid pyramid(geolens::test::pattern(64, 64, 3));
   const Image one = geolens::render(mesh, pyramid, options_for(97, 61, 1));
   for (int threads : {2, 3, 8, 0})
     EXPECT_EQ(geolens::render(mesh, pyramid, options_for(97, 61, threads)).pixels, one.pixels)

@@ -12,6 +12,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/source/mip_pyramid.h"
 #include "geolens/source/tiled_source.h"
+#include "support/test_data.h"
 
 using geolens::Image;
 using geolens::InvalidInput;
@@ -23,15 +24,6 @@ using geolens::TiledSourceOptions;
 using geolens::TileRequest;
 
 namespace {
-
-Image pattern(int width, int height, int channels) {
-  Image image(width, height, channels);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c)
-        image.at(x, y)[c] = uint8_t((x * 7 + y * 13 + c * 101 + x * y) % 256);
-  return image;
-}
 
 /// A tiled source serving the levels of `pyramid`, cut into 8 x 8 tiles.
 std::unique_ptr<TiledSource> tiled(const MipPyramid& pyramid) {
@@ -67,7 +59,7 @@ void expect_clamped(const MipPyramid& pyramid, int level, const TexelRegion& reg
 }  // namespace
 
 TEST(SourceTest, LevelsHalveRoundingUpDownTo1x1AsTheMipPyramidDoes) {
-  const MipPyramid pyramid(pattern(37, 10, 3));
+  const MipPyramid pyramid(geolens::test::pattern(37, 10, 3));
   const std::unique_ptr<TiledSource> tiles = tiled(pyramid);
   for (const Source* source :
        {static_cast<const Source*>(&pyramid), static_cast<const Source*>(tiles.get())}) {
@@ -91,7 +83,7 @@ TEST(SourceTest, LevelsHalveRoundingUpDownTo1x1AsTheMipPyramidDoes) {
 }
 
 TEST(SourceTest, FetchReturnsTheTexelsAndClampsOutsideTheExtent) {
-  const MipPyramid pyramid(pattern(37, 21, 2));
+  const MipPyramid pyramid(geolens::test::pattern(37, 21, 2));
   const std::unique_ptr<TiledSource> tiles = tiled(pyramid);
   struct Rect {
     int x, y, width, height;
@@ -114,7 +106,7 @@ TEST(SourceTest, FetchReturnsTheTexelsAndClampsOutsideTheExtent) {
 }
 
 TEST(SourceTest, FetchRejectsInvalidArguments) {
-  const MipPyramid pyramid(pattern(16, 8, 1));
+  const MipPyramid pyramid(geolens::test::pattern(16, 8, 1));
   const std::unique_ptr<TiledSource> tiles = tiled(pyramid);
   for (const Source* source :
        {static_cast<const Source*>(&pyramid), static_cast<const Source*>(tiles.get())}) {

@@ -18,6 +18,7 @@
 #include "geolens/render/render.h"
 #include "geolens/source/mip_pyramid.h"
 #include "geolens/warp/warp_mesh.h"
+#include "support/test_data.h"
 
 using geolens::Image;
 using geolens::InvalidInput;
@@ -96,38 +97,6 @@ void expect_procedural(const Image& out, int level, int x0, int y0) {
     }
 }
 
-/// A cols x rows vertex grid over [0, width] x [0, height] (alternating diagonals), each vertex
-/// on the screen at screen_of(source), framed for screen_width x screen_height.
-template <class ScreenOf>
-WarpMesh grid_mesh(int cols, int rows, double width, double height, ScreenOf screen_of,
-                   int screen_width, int screen_height) {
-  WarpMesh mesh;
-  mesh.source.resize(cols * rows, 2);
-  mesh.screen.resize(cols * rows, 2);
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < cols; ++i) {
-      const Eigen::Vector2d s(width * i / (cols - 1), height * j / (rows - 1));
-      mesh.source.row(j * cols + i) = s;
-      mesh.screen.row(j * cols + i) = screen_of(s);
-    }
-  mesh.F.resize(2 * (cols - 1) * (rows - 1), 3);
-  int f = 0;
-  for (int j = 0; j + 1 < rows; ++j)
-    for (int i = 0; i + 1 < cols; ++i) {
-      const int a = j * cols + i, b = a + 1, c = a + cols, d = c + 1;
-      if ((i + j) % 2 == 0) {
-        mesh.F.row(f++) << a, b, d;
-        mesh.F.row(f++) << a, d, c;
-      } else {
-        mesh.F.row(f++) << a, b, c;
-        mesh.F.row(f++) << b, d, c;
-      }
-    }
-  mesh.screen_width = screen_width;
-  mesh.screen_height = screen_height;
-  return mesh;
-}
-
 /// Lens-like meshes over a width x height source, framed for a 320 x 240 screen: a radial
 /// magnifier (magnified centre, minified ring), a 3x zoom past the screen's edges, an
 /// anisotropic minification, a jittered grid, one with a vertex far beyond the screen.
@@ -136,7 +105,7 @@ std::vector<WarpMesh> lens_like_meshes(double width, double height) {
     return Eigen::Vector2d(s.x() / width * 320, s.y() / height * 240);
   };
   std::vector<WarpMesh> meshes;
-  meshes.push_back(grid_mesh(
+  meshes.push_back(geolens::test::grid_warp(
       41, 41, width, height,
       [&](const Eigen::Vector2d& s) {
         const Eigen::Vector2d p = frame(s), c(160, 120), d = p - c;
@@ -145,20 +114,20 @@ std::vector<WarpMesh> lens_like_meshes(double width, double height) {
         return Eigen::Vector2d(c + d * (std::pow(r / radius, 0.4) / (r / radius)));
       },
       320, 240));
-  meshes.push_back(grid_mesh(
+  meshes.push_back(geolens::test::grid_warp(
       9, 9, width, height,
       [&](const Eigen::Vector2d& s) {
         return Eigen::Vector2d(3 * frame(s) - Eigen::Vector2d(320, 240));
       },
       320, 240));
-  meshes.push_back(grid_mesh(
+  meshes.push_back(geolens::test::grid_warp(
       9, 9, width, height,
       [&](const Eigen::Vector2d& s) {
         const Eigen::Vector2d p = frame(s);
         return Eigen::Vector2d(0.3 * p.x() + 7, 0.15 * p.y() + 20);
       },
       320, 240));
-  meshes.push_back(grid_mesh(
+  meshes.push_back(geolens::test::grid_warp(
       17, 13, width, height,
       [&](const Eigen::Vector2d& s) {
         const Eigen::Vector2d p = frame(s);
@@ -166,7 +135,7 @@ std::vector<WarpMesh> lens_like_meshes(double width, double height) {
                                p.y() + 4 * std::cos(p.x() * 0.27));
       },
       320, 240));
-  WarpMesh far = grid_mesh(5, 5, width, height, frame, 320, 240);
+  WarpMesh far = geolens::test::grid_warp(5, 5, width, height, frame, 320, 240);
   far.screen.row(12) << 4e9, -3e9;
   meshes.push_back(far);
   return meshes;
