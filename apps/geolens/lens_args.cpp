@@ -68,8 +68,7 @@ LensOptions parse_options(const LensArgs& a) {
   options.flatten.tolerance = a.tolerance;
   options.flatten.max_iterations = a.max_iterations;
   validate(options);
-  require(std::isfinite(a.zoom) && a.zoom >= 1 && a.zoom <= 8, "--zoom",
-          "zoom must be in [1, 8], got " + std::to_string(a.zoom));
+  require_zoom(a.zoom, "--zoom");
   parse_profile(a.profile);
   return options;
 }

@@ -26,12 +26,12 @@ constexpr double kGaussianCoarseness = 15;
 // kField: the height over size is the peak's log zoom, which the context's resistance lowers by
 // about 1 / 1.7.
 constexpr double kFieldResistance = 1.7;
-// The fits are taken at most at zoom 8, where they still rise.
-const double kLargestFittedLogZoom = std::log(8.0);
+// The fits are taken at most at the largest zoom a lens may ask for, where they still rise.
+const double kLargestFittedLogZoom = std::log(kMaxZoom);
 // Caps: the lift's height over size, and the field's (and a focus's) peak log zoom: at most 64x,
 // the square of the largest zoom a lens may ask for (the context's resistance takes the rest).
 constexpr double kMaxHeightOverSize = 20.0;
-const double kMaxLogZoom = 2 * std::log(8.0);
+const double kMaxLogZoom = 2 * std::log(kMaxZoom);
 
 // The guess's curve through h = 0: the height the fits give for a zoom, before the grid's
 // correction.

@@ -7,6 +7,12 @@
 
 namespace geolens {
 
+void require_zoom(double zoom, const char* function) {
+  require(std::isfinite(zoom) && zoom >= kMinZoom && zoom <= kMaxZoom, function,
+          "zoom must be in [" + std::to_string(int(kMinZoom)) + ", " +
+              std::to_string(int(kMaxZoom)) + "], got " + std::to_string(zoom));
+}
+
 void validate_lens(const Lens& lens, double width, double height) {
   auto inside = [&](const Eigen::Vector2d& p) {
     return p.x() >= 0 && p.x() <= width && p.y() >= 0 && p.y() <= height;
@@ -21,8 +27,7 @@ void validate_lens(const Lens& lens, double width, double height) {
     require(inside(v), "validate_lens",
             what + " " + where(v) + " is outside the " + image + " image");
   }
-  require(std::isfinite(lens.zoom) && lens.zoom >= 1 && lens.zoom <= 8, "validate_lens",
-          "zoom must be in [1, 8], got " + std::to_string(lens.zoom));
+  require_zoom(lens.zoom, "validate_lens");
   require(lens.footprint == 0 || (std::isfinite(lens.footprint) && lens.footprint > lens.zoom &&
                                   lens.footprint <= 100),
           "validate_lens",

@@ -19,6 +19,11 @@ struct Lens {
   double footprint = 0;
 };
 
+/// The zooms a lens may ask for.
+constexpr double kMinZoom = 1, kMaxZoom = 8;
+/// Throws InvalidInput, naming `function`, unless `zoom` is in [kMinZoom, kMaxZoom].
+void require_zoom(double zoom, const char* function);
+
 /// Throws InvalidInput unless the lens is usable on a width x height image: zoom in [1, 8], a
 /// circle's centre or every polygon vertex inside the image, footprint 0 or in (zoom, 100].
 void validate_lens(const Lens& lens, double width, double height);
