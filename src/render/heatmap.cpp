@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "render/rasterize.h"
 
 namespace geolens {
 
@@ -74,31 +75,23 @@ Image heatmap(const WarpMesh& mesh, const Eigen::VectorXd& values,
               mesh.screen_height > 0,
           "heatmap", "background and screen sizes must be positive");
   const int width = background.width, height = background.height;
-  // The triangle covering each pixel centre, the later one in F on top.
+  // The triangle covering each pixel centre, the later one in F on top: the renderer's exact
+  // coverage (render/rasterize.h), so a pixel on a shared edge belongs to one triangle.
   std::vector<int> owner(size_t(width) * size_t(height), -1);
   const double sx = double(width) / mesh.screen_width, sy = double(height) / mesh.screen_height;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    Eigen::Vector2d p[3];
-    for (int k = 0; k < 3; ++k)
-      p[k] = {mesh.screen(mesh.F(f, k), 0) * sx, mesh.screen(mesh.F(f, k), 1) * sy};
-    const double area =
-        (p[1] - p[0]).x() * (p[2] - p[0]).y() - (p[1] - p[0]).y() * (p[2] - p[0]).x();
-    if (area == 0 || !std::isfinite(area)) continue;
-    const int x0 = std::max(0, int(std::floor(std::min({p[0].x(), p[1].x(), p[2].x()}))));
-    const int x1 = std::min(width - 1, int(std::ceil(std::max({p[0].x(), p[1].x(), p[2].x()}))));
-    const int y0 = std::max(0, int(std::floor(std::min({p[0].y(), p[1].y(), p[2].y()}))));
-    const int y1 = std::min(height - 1, int(std::ceil(std::max({p[0].y(), p[1].y(), p[2].y()}))));
-    for (int y = y0; y <= y1; ++y) {
-      for (int x = x0; x <= x1; ++x) {
-        const Eigen::Vector2d q(x + 0.5, y + 0.5);
-        bool inside = true;
-        for (int k = 0; k < 3 && inside; ++k) {
-          const Eigen::Vector2d e = p[(k + 1) % 3] - p[k], r = q - p[k];
-          inside = (e.x() * r.y() - e.y() * r.x()) * area >= 0;
-        }
-        if (inside) owner[size_t(y) * size_t(width) + size_t(x)] = int(f);
-      }
+    double x[3], y[3];
+    for (int k = 0; k < 3; ++k) {
+      x[k] = mesh.screen(mesh.F(f, k), 0) * sx;
+      y[k] = mesh.screen(mesh.F(f, k), 1) * sy;
     }
+    if (!std::isfinite(x[0] + x[1] + x[2] + y[0] + y[1] + y[2])) continue;
+    double xs[6][3], ys[6][3];
+    const int pieces = clip_to_guard(x, y, xs, ys);
+    for (int i = 0; i < pieces; ++i)
+      for_each_span(xs[i], ys[i], 0, height, 0, width, [&](int py, int lo, int hi) {
+        std::fill_n(owner.begin() + std::ptrdiff_t(py) * width + lo, hi - lo + 1, int(f));
+      });
   }
   Image out(width, height, 3);
   for (int y = 0; y < height; ++y) {

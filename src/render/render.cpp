@@ -10,6 +10,7 @@
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
+#include "render/rasterize.h"
 #include "source/with_channels.h"
 
 namespace geolens {
@@ -17,18 +18,8 @@ namespace geolens {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// Rasterization
-//
-// Coverage is decided exactly: vertices are snapped to 1/256 output pixel and the edge functions
-// evaluated in 64-bit integers, with a tie rule (a pixel centre exactly on an edge belongs to the
-// triangle whose inward edge normal n has n.x > 0, or n.x == 0 and n.y > 0) that gives a pixel on
-// an edge shared by two triangles to exactly one of them. So a mesh draws every covered pixel
-// once: no cracks, no double hits. Triangles reaching beyond kGuard pixels are clipped to that
-// square first, which keeps the integer products below 2^62.
+// Rasterization: exact coverage (render/rasterize.h), drawn block by block.
 
-constexpr int kSubpixelBits = 8;
-constexpr int64_t kSubpixel = int64_t(1) << kSubpixelBits;
-constexpr double kGuard = 1 << 21;       ///< output pixels
 constexpr int kMaxOutputSide = 1 << 20;  ///< output pixels, keeps the viewport inside the guard
 constexpr double kMaxCoordinate = 1e12;  ///< output pixels, keeps clipping arithmetic finite
 constexpr double kMinArea = 1e-10;       ///< twice the area, squared output pixels
@@ -56,69 +47,6 @@ struct Triangle {
 struct Target {
   uint8_t* pixels;
   int width;
-};
-
-int64_t floor_div(int64_t a, int64_t b) {  // b > 0
-  int64_t q = a / b;
-  if (a % b < 0) --q;
-  return q;
-}
-
-/// Tracks, row by row, the pixel range one edge allows: px <= bound (upper), px >= bound
-/// (lower), or all / none for a horizontal edge. The bound floor(value / divisor) is stepped
-/// exactly with a quotient and a remainder.
-struct EdgeWalker {
-  enum Kind { kUpper, kLower, kHorizontal } kind;
-  int64_t quotient, remainder, divisor, quotient_step, remainder_step;
-
-  /// Edge from (x0, y0) to (x1, y1) of a positively oriented triangle (fixed point), set up at
-  /// the centre of row `row`.
-  EdgeWalker(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int row) {
-    const int64_t dx = x1 - x0, dy = y1 - y0;
-    // Inside: E = dx * (Y - y0) - dy * (X - x0) >= 0, or > 0 unless the tie rule picks this edge.
-    const int64_t tie = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
-    const int64_t centre_y = int64_t(row) * kSubpixel + kSubpixel / 2;
-    // E at pixel px of the row = value - dy * kSubpixel * px.
-    const int64_t value = dx * (centre_y - y0) - dy * (kSubpixel / 2 - x0) + tie;
-    const int64_t step = dx * kSubpixel;  // change of value per row
-    if (dy == 0) {
-      kind = kHorizontal;
-      quotient = value;
-      quotient_step = step;
-      remainder = remainder_step = divisor = 0;
-      return;
-    }
-    kind = dy > 0 ? kUpper : kLower;
-    divisor = (dy > 0 ? dy : -dy) * kSubpixel;
-    quotient = floor_div(value, divisor);
-    remainder = value - quotient * divisor;
-    quotient_step = floor_div(step, divisor);
-    remainder_step = step - quotient_step * divisor;
-  }
-
-  /// Narrows [lo, hi] to the pixels this edge allows on the current row.
-  void clip(int64_t& lo, int64_t& hi) const {
-    switch (kind) {
-      case kUpper:
-        hi = std::min(hi, quotient);
-        break;
-      case kLower:
-        lo = std::max(lo, -quotient);
-        break;
-      case kHorizontal:
-        if (quotient < 0) hi = lo - 1;
-        break;
-    }
-  }
-
-  void next_row() {
-    quotient += quotient_step;
-    remainder += remainder_step;
-    if (kind != kHorizontal && remainder >= divisor) {
-      remainder -= divisor;
-      ++quotient;
-    }
-  }
 };
 
 /// A fetched region of a mip level as the inner loop reads it, held by value so that the output
@@ -201,53 +129,13 @@ template <int C>
 void fill(const double (&x)[3], const double (&y)[3], const Triangle& t, const LevelView& fine,
           const LevelView& coarse, int row_begin, int row_end, int col_begin, int col_end,
           const Target& target) {
-  int64_t fx[3], fy[3];
-  for (int i = 0; i < 3; ++i) {
-    fx[i] = std::llround(x[i] * kSubpixel);
-    fy[i] = std::llround(y[i] * kSubpixel);
-  }
-  const int64_t area = (fx[1] - fx[0]) * (fy[2] - fy[0]) - (fy[1] - fy[0]) * (fx[2] - fx[0]);
-  if (area == 0) return;
-  if (area < 0) {
-    std::swap(fx[1], fx[2]);
-    std::swap(fy[1], fy[2]);
-  }
-  // Rows whose pixel centre lies within the vertical extent.
-  const int64_t y_min = std::min({fy[0], fy[1], fy[2]}), y_max = std::max({fy[0], fy[1], fy[2]});
-  row_begin = int(
-      std::max<int64_t>(row_begin, floor_div(y_min - kSubpixel / 2 + kSubpixel - 1, kSubpixel)));
-  row_end = int(std::min<int64_t>(row_end, floor_div(y_max - kSubpixel / 2, kSubpixel) + 1));
-  if (row_begin >= row_end) return;
-  EdgeWalker edges[3] = {EdgeWalker(fx[0], fy[0], fx[1], fy[1], row_begin),
-                         EdgeWalker(fx[1], fy[1], fx[2], fy[2], row_begin),
-                         EdgeWalker(fx[2], fy[2], fx[0], fy[0], row_begin)};
-  for (int py = row_begin; py < row_end; ++py) {
-    int64_t lo = col_begin, hi = col_end - 1;
-    for (const EdgeWalker& e : edges) e.clip(lo, hi);
-    if (lo <= hi) {
-      uint8_t* row = target.pixels + size_t(py) * size_t(target.width) * C;
-      if (t.blend > 0)
-        shade_span<C, true>(t, fine, coarse, py, int(lo), int(hi), row);
-      else
-        shade_span<C, false>(t, fine, fine, py, int(lo), int(hi), row);
-    }
-    for (EdgeWalker& e : edges) e.next_row();
-  }
-}
-
-struct Point {
-  double x, y;
-};
-
-/// Where segment ab crosses the line coordinate `axis` = `value`. Computed from the endpoints in
-/// a fixed order, so the two triangles sharing an edge get the same point.
-Point crossing(Point a, Point b, int axis, double value) {
-  if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b);
-  const double a_along = axis == 0 ? a.x : a.y, b_along = axis == 0 ? b.x : b.y;
-  const double s = (value - a_along) / (b_along - a_along);
-  Point p{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)};
-  (axis == 0 ? p.x : p.y) = value;
-  return p;
+  for_each_span(x, y, row_begin, row_end, col_begin, col_end, [&](int py, int lo, int hi) {
+    uint8_t* row = target.pixels + size_t(py) * size_t(target.width) * C;
+    if (t.blend > 0)
+      shade_span<C, true>(t, fine, coarse, py, lo, hi, row);
+    else
+      shade_span<C, false>(t, fine, fine, py, lo, hi, row);
+  });
 }
 
 /// The texels of `level` that shading output pixels [px_lo, px_hi] x [py_lo, py_hi] through
@@ -310,37 +198,7 @@ void draw(const Triangle& t, const Source& source, int row_begin, int row_end,
           const Target& target) {
   // The triangle, or the fan of its part within the guard square.
   double xs[6][3], ys[6][3];
-  int count = 0;
-  bool inside = true;
-  for (int i = 0; i < 3; ++i)
-    inside = inside && std::abs(t.x[i]) <= kGuard && std::abs(t.y[i]) <= kGuard;
-  if (inside) {
-    std::copy(t.x, t.x + 3, xs[0]);
-    std::copy(t.y, t.y + 3, ys[0]);
-    count = 1;
-  } else {
-    // Sutherland-Hodgman against x >= -G, x <= G, y >= -G, y <= G: at most 7 vertices.
-    Point polygon[8], clipped[8];
-    int n = 3;
-    for (int i = 0; i < 3; ++i) polygon[i] = {t.x[i], t.y[i]};
-    for (int plane = 0; plane < 4 && n > 0; ++plane) {
-      const int axis = plane / 2;
-      const double side = plane % 2 == 0 ? -1 : 1;  // keep side * coordinate <= kGuard
-      auto keep = [&](Point p) { return side * (axis == 0 ? p.x : p.y) <= kGuard; };
-      int m = 0;
-      for (int i = 0; i < n; ++i) {
-        const Point a = polygon[i], b = polygon[(i + 1) % n];
-        if (keep(a)) clipped[m++] = a;
-        if (keep(a) != keep(b)) clipped[m++] = crossing(a, b, axis, side * kGuard);
-      }
-      std::copy(clipped, clipped + m, polygon);
-      n = m;
-    }
-    for (int i = 1; i + 1 < n; ++i, ++count) {
-      xs[count][0] = polygon[0].x, xs[count][1] = polygon[i].x, xs[count][2] = polygon[i + 1].x;
-      ys[count][0] = polygon[0].y, ys[count][1] = polygon[i].y, ys[count][2] = polygon[i + 1].y;
-    }
-  }
+  const int count = clip_to_guard(t.x, t.y, xs, ys);
   // Columns whose pixel centres it may cover, with a pixel of slack for the snapping.
   const double x_min = std::min({t.x[0], t.x[1], t.x[2]}),
                x_max = std::max({t.x[0], t.x[1], t.x[2]});

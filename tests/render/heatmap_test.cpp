@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "geolens/core/errors.h"
+#include "geolens/render/render.h"
+#include "support/test_data.h"
 
 namespace geolens {
 namespace {
@@ -74,6 +76,54 @@ TEST(Heatmap, UncoveredPixelsKeepTheBackgroundLuminance) {
   const uint8_t grey = uint8_t(std::lround(0.299 * 200 + 0.587 * 100));
   EXPECT_EQ(pixel(out, 35, 25), (std::array<uint8_t, 3>{grey, grey, grey}));
   EXPECT_NE(pixel(out, 3, 12), pixel(out, 35, 25));
+}
+
+// The heat map and the renderer decide coverage by one rule: on a jittered mesh whose edges cross
+// pixel centres, every pixel shows the same triangle in both (each triangle rendered in a flat
+// colour of its parity, and drawn in the heat map with its parity as the value).
+TEST(Heatmap, CoversEveryPixelAsTheRendererDoes) {
+  const WarpMesh grid = test::grid_warp(
+      9, 7, 40, 30,
+      [](const Eigen::Vector2d& s) {
+        // Interior vertices moved off the grid; some edges pass exactly through pixel centres.
+        const bool border = s.x() == 0 || s.y() == 0 || s.x() == 40 || s.y() == 30;
+        return border ? s : Eigen::Vector2d(s + Eigen::Vector2d(std::fmod(s.y(), 3.0) - 1, 0.5));
+      },
+      40, 30);
+  // A triangle soup on the same screen, in reverse order (so that the later of two triangles
+  // sharing a horizontal edge is the upper one, which the tie rule does not pick): triangle f
+  // samples texel f % 2 of a 2 x 1 source.
+  WarpMesh soup;
+  soup.screen_width = 40;
+  soup.screen_height = 30;
+  soup.F.resize(grid.F.rows(), 3);
+  soup.screen.resize(3 * grid.F.rows(), 2);
+  soup.source.resize(3 * grid.F.rows(), 2);
+  for (Eigen::Index f = 0; f < grid.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      soup.F(f, k) = int(3 * f + k);
+      soup.screen.row(3 * f + k) = grid.screen.row(grid.F(grid.F.rows() - 1 - f, k));
+      soup.source.row(3 * f + k) = Eigen::RowVector2d(f % 2 + 0.5, 0.5);
+    }
+  Image source(2, 1, 3);
+  std::fill_n(source.at(0, 0), 3, uint8_t(0));
+  std::fill_n(source.at(1, 0), 3, uint8_t(255));
+  RenderOptions options;
+  options.width = 40;
+  options.height = 30;
+  options.background = {128, 128, 128, 255};
+  const Image rendered = render(soup, MipPyramid(source), options);
+  Eigen::VectorXd values(grid.F.rows());
+  for (Eigen::Index f = 0; f < values.size(); ++f) values(f) = double(f % 2);
+  const Eigen::Matrix<bool, Eigen::Dynamic, 1> flipped =
+      Eigen::Matrix<bool, Eigen::Dynamic, 1>::Zero(grid.F.rows());
+  const Image heat = heatmap(soup, values, flipped, Image(40, 30, 3, 128), 1.0, 1.0);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const uint8_t r = rendered.at(x, y)[0];
+      ASSERT_TRUE(r == 0 || r == 255) << "uncovered pixel " << x << ", " << y;
+      EXPECT_EQ(pixel(heat, x, y), heat_colour(r == 255 ? 1.0 : 0.0)) << x << ", " << y;
+    }
 }
 
 TEST(Heatmap, LegendAddsAStripWithTheScale) {
