@@ -51,6 +51,10 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
   c.add_option("--max-iterations", a.max_iterations, "cap on flattening iterations")
       ->capture_default_str();
+  c.add_option("--threads", a.threads,
+               "threads of the lens solve (and of magnify's rendering), >= 0 (0: all cores); "
+               "the results do not depend on it")
+      ->capture_default_str();
 }
 
 LensOptions parse_options(const LensArgs& a) {
@@ -67,6 +71,7 @@ LensOptions parse_options(const LensArgs& a) {
   options.flatten.boundary = parse_boundary(a.boundary);
   options.flatten.tolerance = a.tolerance;
   options.flatten.max_iterations = a.max_iterations;
+  options.flatten.threads = a.threads;
   validate(options);
   require_zoom(a.zoom, "--zoom");
   parse_profile(a.profile);

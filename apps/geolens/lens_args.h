@@ -18,12 +18,12 @@ struct LensArgs {
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
               model = "focus", boundary = "sliding", extent = "global";
   double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5, footprint = 0;
-  int mesh = 100, max_iterations = 100, subdivide = 0;
+  int mesh = 100, max_iterations = 100, subdivide = 0, threads = 0;
 };
 
 /// Registers --lens (required), --zoom, --model, --footprint, --profile, --mesh, --subdivide,
-/// --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor, --tolerance
-/// and --max-iterations on `command`.
+/// --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor, --tolerance,
+/// --max-iterations and --threads on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
 
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.

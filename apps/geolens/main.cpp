@@ -98,6 +98,7 @@ int run_magnify(const MagnifyArgs& a) {
   RenderOptions render_options;
   render_options.width = width;
   render_options.height = height;
+  render_options.threads = options.flatten.threads;
   const Image output = render(result.warp, pyramid, render_options);
   Image before;
   if (!a.before_after.empty()) {

@@ -10,6 +10,7 @@
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
+#include "geolens/core/thread_pool.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/texture_map.h"
 #include "geolens/numerics/sparse_solver.h"
@@ -63,14 +64,16 @@ void validate(const FlattenOptions& o) {
           "tolerance must be in (0, 1), got " + std::to_string(o.tolerance));
   require(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate",
           "max iterations must be in [1, 100000], got " + std::to_string(o.max_iterations));
+  require(o.threads >= 0, "validate", "threads must be >= 0, got " + std::to_string(o.threads));
 }
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,
                      const FlattenOptions& options, const Eigen::VectorXd& log_scale,
-                     const FocusConstraints& focus)
+                     const FocusConstraints& focus, std::shared_ptr<ThreadPool> pool)
     : F_(F), rest_(V3.leftCols<2>()), options_(options) {
   validate(options);
+  pool_ = pool ? std::move(pool) : std::make_shared<ThreadPool>(options.threads);
   const Eigen::Index n = V3.rows();
   require(sides.size() == size_t(n), "Flattener", "sides must have one entry per vertex");
   require(F.rows() > 0 && F.minCoeff() >= 0 && F.maxCoeff() < n, "Flattener",
@@ -113,16 +116,18 @@ void Flattener::factorize() const {
     if (fix_x_ == fix_y_) {
       solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_);
     } else {
-      parallel_invoke([&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_); },
-                      [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y_); });
+      parallel_invoke(
+          *pool_, [&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_); },
+          [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y_); });
     }
     changed_.clear();
     return;
   }
   if (changed_.empty()) return;
   if (solver_y_) {
-    parallel_invoke([&] { solver_x_->refactorize(L_, changed_); },
-                    [&] { solver_y_->refactorize(L_, changed_); });
+    parallel_invoke(
+        *pool_, [&] { solver_x_->refactorize(L_, changed_); },
+        [&] { solver_y_->refactorize(L_, changed_); });
   } else {
     solver_x_->refactorize(L_, changed_);
   }
@@ -165,7 +170,7 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   triangles_.resize(size_t(F_.rows()));
   std::vector<double> planar_area(triangles_.size());
   std::vector<char> degenerate(triangles_.size(), 0);
-  parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+  parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       const Eigen::Index fi = Eigen::Index(f);
       const Eigen::Vector3d e1 = V3.row(F_(fi, 1)) - V3.row(F_(fi, 0));
@@ -200,7 +205,7 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   // so a moved lens changes only the rows it lifts (WindowedCholesky relies on it).
   const double mean_area =
       std::accumulate(planar_area.begin(), planar_area.end(), 0.0) / double(triangles_.size());
-  parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+  parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       Triangle& t = triangles_[f];
       const Eigen::Index fi = Eigen::Index(f);
@@ -354,7 +359,7 @@ double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
   double s_max = std::numeric_limits<double>::infinity();
   std::mutex s_max_mutex;
   parallel_for(
-      size_t(F_.rows()),
+      *pool_, size_t(F_.rows()),
       [&](size_t begin, size_t end) {
         double chunk_max = std::numeric_limits<double>::infinity();
         for (Eigen::Index f = Eigen::Index(begin); f < Eigen::Index(end); ++f) {
@@ -404,7 +409,7 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
   std::vector<double> triangle_energy(triangles_.size());
   std::vector<char> folded(triangles_.size());
   auto local_step = [&]() {
-    parallel_for(triangles_.size(), [&](size_t begin, size_t end) {
+    parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
       for (size_t f = begin; f < end; ++f) {
         const Triangle& t = triangles_[f];
         const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
@@ -463,8 +468,9 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
     factorize();  // the first global step needs it; a start already at the minimum does not
     Eigen::MatrixX2d next(n, 2);
     if (solver_y_) {
-      parallel_invoke([&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
-                      [&] { next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1)); });
+      parallel_invoke(
+          *pool_, [&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
+          [&] { next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1)); });
     } else {
       next = solver_x_->solve(b, fixed_values);
     }

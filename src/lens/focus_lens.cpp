@@ -263,7 +263,7 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
 
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double band, double width,
-                       double height, double slack) {
+                       double height, ThreadPool& pool, double slack) {
   require(log_zooms.size() == lenses.size(), "focus_field", "one log zoom per lens expected");
   require(std::isfinite(cell) && cell > 0 && std::isfinite(band) && band >= 0 &&
               std::isfinite(slack) && slack >= 1,
@@ -282,7 +282,7 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   c.anisotropy = Eigen::VectorXd::Ones(n);
   out.log_scale = Eigen::VectorXd::Zero(n);
   out.level = Eigen::VectorXd::Zero(n);
-  parallel_for(size_t(n), [&](size_t begin, size_t end) {
+  parallel_for(pool, size_t(n), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
       // The nearest focus, and the ring p is deepest in (smallest s over edge).
@@ -323,9 +323,9 @@ namespace {
 
 // Moves the rows of X (pixels) by `group`'s power-law ring (see focus_start) at `log_zoom`.
 void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const FocusGroup& group,
-                const Ring& ring, double log_zoom) {
+                const Ring& ring, double log_zoom, ThreadPool& pool) {
   if (log_zoom <= 0) return;
-  parallel_for(size_t(X.rows()), [&](size_t begin, size_t end) {
+  parallel_for(pool, size_t(X.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
       const Ring::Place p = ring.place(X.row(i).transpose(), group, lenses);
       // s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge > zoom inner.
@@ -340,22 +340,24 @@ void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const Focu
 
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
-                             double width, double height) {
+                             double width, double height, ThreadPool& pool) {
   Eigen::MatrixX2d X = V;
   for (const FocusGroup& group : groups)
-    apply_ring(X, lenses, group, Ring(group, lenses, cell, band, width, height), group.log_zoom);
+    apply_ring(X, lenses, group, Ring(group, lenses, cell, band, width, height), group.log_zoom,
+               pool);
   return X;
 }
 
 std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
-                                    double cell, double band, double width, double height) {
+                                    double cell, double band, double width, double height,
+                                    ThreadPool& pool) {
   std::vector<double> zooms(lenses.size(), 1.0);
   for (const FocusGroup& group : focus_groups(lenses)) {
     // The footprints are disjoint, so each group is tried on its own.
     const Ring ring(group, lenses, cell, band, width, height);
     for (const double fraction : kZoomFractions) {
       Eigen::MatrixX2d X = mesh.V;
-      apply_ring(X, lenses, group, ring, fraction * group.log_zoom);
+      apply_ring(X, lenses, group, ring, fraction * group.log_zoom, pool);
       if (count_folds(X, mesh.F) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
@@ -366,13 +368,13 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height,
+                            double cell, double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control) {
   // The full start, else one at lower zooms (the solve then raises them), else the identity.
   for (const double fraction : kZoomFractions) {
     std::vector<FocusGroup> lowered = groups;
     for (FocusGroup& g : lowered) g.log_zoom *= fraction;
-    const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height);
+    const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height, pool);
     if (!flattener.admissible(start)) continue;
     flattener.admit_anisotropy(start);
     return flattener.solve(start, nullptr, control);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/thread_pool.h"
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
@@ -76,6 +77,7 @@ GeometricLens::GeometricLens(double width, double height, const LensOptions& opt
     : width_(width), height_(height), options_(options) {
   validate(options);
   grid_ = make_grid(width, height, options.mesh);
+  pool_ = std::make_shared<ThreadPool>(options.flatten.threads);
 }
 
 // The area solved: the image, or a local patch around the lenses (kFocus: their footprints).
@@ -155,7 +157,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::ve
   // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding.
   grid = base_grid(out, box);
   const double out_cell = cell_size(box, options_.mesh);
-  lower(unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_));
+  lower(unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_, *pool_));
   return out;
 }
 
@@ -194,7 +196,8 @@ Lifted GeometricLens::lift_and_texture(const std::vector<Lens>& lenses,
     // The focus field read as a lift (for --export-mesh): z = log zoom times the solved area's
     // long side.
     const double cell = cell_size(box, options_.mesh);
-    focus = focus_field(r.mesh.V, lenses, heights, cell, focus_band(lenses, cell), width_, height_);
+    focus = focus_field(r.mesh.V, lenses, heights, cell, focus_band(lenses, cell), width_, height_,
+                        *pool_);
     lifted.V.resize(r.mesh.V.rows(), 3);
     lifted.V.leftCols<2>() = r.mesh.V;
     lifted.V.col(2) = focus.log_scale * box.sizes().maxCoeff();
@@ -290,9 +293,9 @@ LensResult GeometricLens::solve_once(const PlanarMesh& mesh, const Eigen::Aligne
     cache.flat.rowwise() += shift;
     if (cache.predicted.rows() == cache.flat.rows()) cache.predicted.rowwise() += shift;
   } else {
-    cache.flattener =
-        std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
-                                    flatten_options(r.model), lifted.log_zoom, focus.constraints);
+    cache.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
+                                                  flatten_options(r.model), lifted.log_zoom,
+                                                  focus.constraints, pool_);
     cache.flat = r.mesh.V;
     cache.predicted.resize(0, 2);
   }
@@ -316,7 +319,7 @@ LensResult GeometricLens::solve_once(const PlanarMesh& mesh, const Eigen::Aligne
   if (r.model == LensModel::kFocus) {
     const double cell = cell_size(box, options_.mesh);
     r.flattening = flatten_focus(*cache.flattener, r.mesh.V, lenses, focus.groups, cell,
-                                 focus_band(lenses, cell), width_, height_, &numbered);
+                                 focus_band(lenses, cell), width_, height_, *pool_, &numbered);
   } else {
     r.flattening =
         cache.flattener->solve(cache.flat, predicted ? &cache.predicted : nullptr, &numbered);

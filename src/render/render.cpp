@@ -4,12 +4,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "core/parallel.h"
 #include "geolens/core/errors.h"
+#include "geolens/core/thread_pool.h"
 #include "render/rasterize.h"
 #include "source/with_channels.h"
 
@@ -334,48 +334,45 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
 Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& options) {
   validate(mesh, options);
   const int width = options.width, height = options.height, C = source.channels();
-  const int threads =
-      options.threads > 0 ? options.threads : std::max(1, int(std::thread::hardware_concurrency()));
+  // The caller's pool, or one of options.threads for this call.
+  std::unique_ptr<ThreadPool> own_pool;
+  if (options.pool == nullptr) own_pool = std::make_unique<ThreadPool>(options.threads);
+  ThreadPool& pool = options.pool != nullptr ? *options.pool : *own_pool;
+  const int threads = pool.size();
   const double scale_x = double(width) / mesh.screen_width;
   const double scale_y = double(height) / mesh.screen_height;
 
   const int triangle_count = int(mesh.F.rows());
   std::vector<Triangle> triangles(static_cast<size_t>(triangle_count));
   constexpr int kChunk = 1024;
-  parallel_for_each(
-      size_t((triangle_count + kChunk - 1) / kChunk),
-      [&](size_t i) {
-        const int chunk = int(i);
-        const int end = std::min(triangle_count, (chunk + 1) * kChunk);
-        for (int f = chunk * kChunk; f < end; ++f)
-          triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
-      },
-      threads);
+  pool.run(size_t((triangle_count + kChunk - 1) / kChunk), [&](size_t i) {
+    const int chunk = int(i);
+    const int end = std::min(triangle_count, (chunk + 1) * kChunk);
+    for (int f = chunk * kChunk; f < end; ++f)
+      triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
+  });
 
   Image out(width, height, C);
   const Target target{out.pixels.data(), width};
   // Horizontal bands, a few per thread for balance; each draws every triangle clipped to its
   // rows, in mesh order, so the result does not depend on the thread count.
   const int bands = threads == 1 ? 1 : std::min(height, 4 * threads);
-  parallel_for_each(
-      size_t(bands),
-      [&](size_t index) {
-        const int band = int(index);
-        const int row_begin = int(int64_t(height) * band / bands);
-        const int row_end = int(int64_t(height) * (band + 1) / bands);
-        with_channels(C, [&](auto channels) {
-          constexpr int kC = decltype(channels)::value;
-          uint8_t* band_pixels = out.at(0, row_begin);
-          const size_t band_size = size_t(row_end - row_begin) * size_t(width) * kC;
-          for (size_t i = 0; i < band_size; i += kC)
-            for (int k = 0; k < kC; ++k) band_pixels[i + k] = options.background[size_t(k)];
-          for (const Triangle& t : triangles)
-            if (t.row_begin < row_end && t.row_end > row_begin)
-              draw<kC>(t, source, std::max(row_begin, t.row_begin), std::min(row_end, t.row_end),
-                       target);
-        });
-      },
-      threads);
+  pool.run(size_t(bands), [&](size_t index) {
+    const int band = int(index);
+    const int row_begin = int(int64_t(height) * band / bands);
+    const int row_end = int(int64_t(height) * (band + 1) / bands);
+    with_channels(C, [&](auto channels) {
+      constexpr int kC = decltype(channels)::value;
+      uint8_t* band_pixels = out.at(0, row_begin);
+      const size_t band_size = size_t(row_end - row_begin) * size_t(width) * kC;
+      for (size_t i = 0; i < band_size; i += kC)
+        for (int k = 0; k < kC; ++k) band_pixels[i + k] = options.background[size_t(k)];
+      for (const Triangle& t : triangles)
+        if (t.row_begin < row_end && t.row_end > row_begin)
+          draw<kC>(t, source, std::max(row_begin, t.row_begin), std::min(row_end, t.row_end),
+                   target);
+    });
+  });
   return out;
 }
 

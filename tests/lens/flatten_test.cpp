@@ -159,6 +159,9 @@ TEST(Flattener, RejectsBadOptions) {
   o = {};
   o.max_iterations = 0;
   EXPECT_THROW(Flattener(b.lifted.V, b.grid.F, b.lifted.level, b.grid.sides, o), InvalidInput);
+  o = {};
+  o.threads = -1;
+  EXPECT_THROW(Flattener(b.lifted.V, b.grid.F, b.lifted.level, b.grid.sides, o), InvalidInput);
 }
 
 // A second guess starts the solve unless it folds a triangle.

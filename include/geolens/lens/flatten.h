@@ -13,6 +13,7 @@
 namespace geolens {
 
 class DirichletSolver;
+class ThreadPool;  // core/thread_pool.h
 
 /// Per-edge weights of the global step.
 enum class FlattenWeights {
@@ -70,6 +71,10 @@ struct FlattenOptions {
   /// current (flip-free) flattening would degenerate (after Smith and Schaefer 2015's
   /// flip-preventing line search). The energy still never increases.
   bool flip_safe = true;
+  /// Threads of the flattener's pool (the per-triangle steps, the x and y factorizations), the
+  /// calling thread included: 0 = one per hardware thread, 1 = the calling thread only, >= 0.
+  /// Results do not depend on it.
+  int threads = 0;
 };
 
 /// Throws InvalidInput unless the options are in range.
@@ -120,10 +125,13 @@ class Flattener {
   /// @param log_scale  #V natural log of the magnification asked at each vertex (Standard::kScaled
   ///                   only; empty otherwise)
   /// @param focus  focus-lens constraints (empty: none, the metric applies everywhere)
+  /// @param pool   the threads its loops run on, shared with the caller (GeometricLens passes
+  ///               the lens's); null: a pool of its own of options.threads, started here and
+  ///               kept for the flattener's life (across reweights and solves)
   Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F, const Eigen::VectorXd& level,
             const std::vector<uint8_t>& sides, const FlattenOptions& options,
             const Eigen::VectorXd& log_scale = Eigen::VectorXd(),
-            const FocusConstraints& focus = {});
+            const FocusConstraints& focus = {}, std::shared_ptr<ThreadPool> pool = nullptr);
   ~Flattener();
 
   /// Refits the flattener to a new lift of the same mesh (same faces, sides, options): the
@@ -188,6 +196,7 @@ class Flattener {
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
   Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;
 
+  std::shared_ptr<ThreadPool> pool_;
   Eigen::MatrixX3i F_;
   Eigen::MatrixX2d rest_;  // the grid's 2D positions: the values of fixed coordinates
   FlattenOptions options_;

@@ -12,6 +12,9 @@
 
 namespace geolens {
 
+class ThreadPool;  // core/thread_pool.h: the functions below that take one run their
+                   // per-vertex loops on it
+
 /// The footprint of a lens as a ratio: the footprint is the focus scaled by it about the lens's
 /// centre (along each ray, R = ratio r_f), within the disk of radius ratio x reach.
 /// `lens.footprint`, or 2 zoom if that is 0 (the proportions of a flat-top lens whose flat top
@@ -80,7 +83,7 @@ struct FocusField {
 };
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double band, double width,
-                       double height, double slack = 1.1);
+                       double height, ThreadPool& pool, double slack = 1.1);
 
 /// A fold-free first flattening for focus_field's constraints: each group's power-law ring,
 /// generalized to any region. About the group's centre c (or a point on the image side its
@@ -95,14 +98,15 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 /// their footprints do not overlap. Returns #V x 2, pixels.
 Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
-                             double width, double height);
+                             double width, double height, ThreadPool& pool);
 
 /// Per lens, the largest zoom of its group (its own, or exp of 0.8, 0.6, 0.4 or 0.2 of its log)
 /// at which the group's ring in focus_start folds no triangle of `mesh` (cell side `cell`,
 /// pixels, on a width x height image), 1 if none: where fitting_zooms's estimate is too much for
 /// the mesh (a ring a few cells wide).
 std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
-                                    double cell, double band, double width, double height);
+                                    double cell, double band, double width, double height,
+                                    ThreadPool& pool);
 
 /// Flattens focus lenses with `flattener` (built on focus_field's constraints and log scales,
 /// Standard::kScaled, kCotan weights) from focus_start, each triangle's anisotropy bound raised
@@ -112,7 +116,7 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 /// identity `V` (#V x 2, pixels). `control` as in Flattener::solve.
 FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height,
+                            double cell, double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control = nullptr);
 
 }  // namespace geolens

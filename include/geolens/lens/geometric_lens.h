@@ -20,6 +20,7 @@
 namespace geolens {
 
 struct FocusField;  // focus_lens.h
+class ThreadPool;   // core/thread_pool.h
 
 /// Which part of the image takes part in the solve.
 enum class Extent {
@@ -101,6 +102,11 @@ struct SolveCache;  // what one solve leaves for the next: lens/solve_cache.h (p
 /// Magnifies lenses on a width x height image. Holds the grid and nothing that changes: solve()
 /// is independent of any earlier call and may run on several threads at once. The interactive
 /// path, which keeps what one frame leaves for the next, is LensSession (lens_session.h).
+///
+/// Threads: the lens owns one ThreadPool of options.flatten.threads (0 = one per hardware
+/// thread), started by the constructor and shared by its copies; every solve runs its parallel
+/// loops there (the focus lens's, and the flatteners' it builds). Solves running at once share
+/// it: one has the workers, the others run their loops on their own threads (ThreadPool::run).
 class GeometricLens {
  public:
   GeometricLens(double width, double height, const LensOptions& options = {});
@@ -158,6 +164,7 @@ class GeometricLens {
   double width_, height_;
   LensOptions options_;
   Grid grid_;
+  std::shared_ptr<ThreadPool> pool_;
 };
 
 }  // namespace geolens

@@ -11,11 +11,18 @@
 
 namespace geolens {
 
+class ThreadPool;  // core/thread_pool.h
+
 struct RenderOptions {
   int width = 0;                                             ///< output width, pixels (> 0)
   int height = 0;                                            ///< output height, pixels (> 0)
   std::array<uint8_t, 4> background = {255, 255, 255, 255};  ///< for pixels no triangle covers
-  int threads = 0;                                           ///< 0 = hardware concurrency
+  /// threads of the pool render() starts for the call when `pool` is null, the calling thread
+  /// included: 0 = hardware concurrency, >= 0
+  int threads = 0;
+  /// The threads to render on, kept by the caller across calls (a viewer's, so no thread is
+  /// started per frame; `threads` is then ignored); null: a pool of `threads` for this call.
+  ThreadPool* pool = nullptr;
 };
 
 /// Rasterizes the screen triangles of `mesh` (screen coordinates scaled from
