@@ -50,7 +50,7 @@ double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
 struct Ring {
   static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
   Eigen::Vector2d centre, disk_centre;
-  double disk_radius, ratio, near, cell, width, height;
+  double disk_radius, ratio, near, cell, width, height, margin = 0;
   std::vector<double> inner_;  // per bin, or one value for a circle about its centre
 
   Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
@@ -71,10 +71,16 @@ struct Ring {
     if (b.min().y() <= 0) c.y() = 0;
     if (b.max().y() >= height) c.y() = height;
     place_at(c, group, lenses);
+    for (size_t k : group.lenses)
+      if (lenses[k].region.size() < 3 * cell) margin = 2 * cell;
   }
 
-  // The smallest ratio, over the rays into the image, of the footprint's edge (less two cells,
-  // for the mesh to bend in) to the focus's extent.
+  // The smallest ratio, over the rays into the image, of the footprint's edge, less `margin`,
+  // to the focus's extent. The margin is two cells for the mesh to bend in when a region of the
+  // group spans fewer than three cells (below the mesh's resolution, where a ring folds or
+  // shrinks the focus), else 0: a margin of cells made the zoom that fits depend on the mesh (a
+  // circle of radius 100 at 80 px from a side fitted 1.92 at 100 x 100 and 2.0 at 400 x 400); a
+  // mesh too coarse for the ring folds and is caught by unfolding_zooms.
   double min_ratio() const {
     double r = std::numeric_limits<double>::infinity();
     constexpr int kRays = 720;
@@ -82,7 +88,7 @@ struct Ring {
       const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
       if (ray_exits(centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
-      r = std::min(r, (edge(u) - 2 * cell) / inner(u));
+      r = std::min(r, (edge(u) - margin) / inner(u));
     }
     return r;
   }
@@ -99,14 +105,34 @@ struct Ring {
     }
     // Along each ray, from the reach inwards in half-cell steps to the first point within
     // `near` of a region, plus a step and `near` (the vertices of the focus between two rays).
+    // Where the band is narrower than a step (circles, which the mesh follows), the crossing is
+    // found to kCrossing px by bisection instead and padded by the arc between two rays there, so
+    // that the ring does not depend on the mesh; a polygon's band (sqrt 2 cells) is wider, and
+    // its focus depends on the mesh anyway.
+    constexpr double kCrossing = 1e-3;  // pixels
     const double step = 0.5 * cell;
+    const bool refine = near < step;
     std::vector<double> found(kBins);
     for (int k = 0; k < kBins; ++k) {
       const double a = 2 * std::numbers::pi * k / kBins;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      auto away = [&](double t) { return group_distance(group, lenses, centre + t * u) > near; };
       double t = reach;
-      while (t > 0 && group_distance(group, lenses, centre + t * u) > near) t -= step;
-      found[size_t(k)] = std::min(std::max(t, 0.0) + step + near, reach);
+      while (t > 0 && away(t)) t -= step;
+      t = std::max(t, 0.0);
+      if (!refine) {
+        found[size_t(k)] = std::min(t + step + near, reach);
+        continue;
+      }
+      if (t < reach && !away(t)) {
+        double lo = t, hi = std::min(t + step, reach);  // away(hi) holds, away(lo) does not
+        while (hi - lo > kCrossing) {
+          const double mid = 0.5 * (lo + hi);
+          (away(mid) ? hi : lo) = mid;
+        }
+        t = lo;
+      }
+      found[size_t(k)] = std::min(t * (1 + 2 * std::numbers::pi / kBins) + near, reach);
     }
     // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
     // from ray to ray that the ring does not shear the mesh's triangles until they fold.

@@ -311,27 +311,50 @@ namespace {
 // 0.011). Its grid follows the focus circle and the footprint's edge, which is the group's disk
 // where the border is not near (the smooth minimum with the border is the plain one there);
 // with the edge rounded by the border everywhere it was 1.09 px, without the rings 8.9 px.
-TEST(FocusLens, AFinerMeshMovesNoPointFar) {
-  const std::vector<Lens> lenses = {Lens{Region::circle({512, 512}, 100), 2.0}};
+// The largest and the mean distance between where the lens on the 100 and on the 400 grid
+// send the source points of a 4 px lattice of a 1024 px image; and the zooms each fitted.
+struct MeshGap {
+  double worst = 0, mean = 0, fit_coarse = 0, fit_fine = 0;
+};
+MeshGap finer_mesh_gap(const Lens& lens) {
   LensOptions coarse, fine;
   coarse.mesh = 100;
   fine.mesh = 400;
-  const LensResult a = GeometricLens(1024, 1024, coarse).solve(lenses);
-  const LensResult b = GeometricLens(1024, 1024, fine).solve(lenses);
+  const LensResult a = GeometricLens(1024, 1024, coarse).solve({lens});
+  const LensResult b = GeometricLens(1024, 1024, fine).solve({lens});
   const WarpMap map_a(a.warp), map_b(b.warp);
-  double worst = 0, sum = 0;
+  MeshGap gap{0, 0, a.zoom_fits[0], b.zoom_fits[0]};
   int count = 0;
   for (double y = 2; y < 1024; y += 4) {
     for (double x = 2; x < 1024; x += 4) {
       const std::optional<Eigen::Vector2d> pa = map_a.forward({x, y}), pb = map_b.forward({x, y});
-      ASSERT_TRUE(pa && pb) << x << ", " << y;
-      worst = std::max(worst, (*pa - *pb).norm());
-      sum += (*pa - *pb).norm();
+      EXPECT_TRUE(pa && pb) << x << ", " << y;
+      if (!pa || !pb) continue;
+      gap.worst = std::max(gap.worst, (*pa - *pb).norm());
+      gap.mean += (*pa - *pb).norm();
       ++count;
     }
   }
-  EXPECT_LT(worst, 0.25);
-  EXPECT_LT(sum / count, 0.015);
+  gap.mean /= count;
+  return gap;
+}
+
+TEST(FocusLens, AFinerMeshMovesNoPointFar) {
+  const MeshGap gap = finer_mesh_gap(Lens{Region::circle({512, 512}, 100), 2.0});
+  EXPECT_LT(gap.worst, 0.25);
+  EXPECT_LT(gap.mean, 0.015);
+}
+
+// A circle whose footprint the image's side cuts fits the same zoom on either mesh (its ring is
+// found to 1e-3 px, not in steps of the cell, and keeps no margin of cells): 1.997 on both where
+// the 100 grid fitted 1.921 and moved points by 14 px (mean 1.4). What remains is where the
+// footprint's edge turns from its circle to the side (a smooth minimum the grid does not
+// follow): measured 1.64 px at most, 0.009 on average.
+TEST(FocusLens, ACircleAtASideFitsTheSameZoomOnAFinerMesh) {
+  const MeshGap gap = finer_mesh_gap(Lens{Region::circle({300, 80}, 100), 2.0});
+  EXPECT_NEAR(gap.fit_coarse / gap.fit_fine, 1.0, 0.002);
+  EXPECT_LT(gap.worst, 2.5);
+  EXPECT_LT(gap.mean, 0.02);
 }
 
 }  // namespace
