@@ -2,11 +2,15 @@
 # Installs geolens's build dependencies from Debian's packages and builds it (Release) in build/.
 # Run as root on Debian 12. Why each package: Eigen (linear algebra, sparse Cholesky), CLI11
 # (command line), nlohmann-json (stats), libspng and libjpeg-turbo (PNG and JPEG), stb (a
-# stroke font for plot labels), GoogleTest, Google Benchmark.
+# stroke font for plot labels), GoogleTest, Google Benchmark. The viewer, geolens-view: GLFW
+# (window, input), libepoxy (loads OpenGL 3.3 core), Dear ImGui (the panel; its static library
+# is built with imgui_freetype, so freetype too); its tests run it under xvfb-run (xvfb, and xauth,
+# which xvfb-run needs and xvfb only recommends) with Mesa's software OpenGL (libgl1-mesa-dri).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev
-          libspng-dev libjpeg62-turbo-dev libstb-dev libgtest-dev libbenchmark-dev)
+          libspng-dev libjpeg62-turbo-dev libstb-dev libgtest-dev libbenchmark-dev
+          libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev xvfb xauth libgl1-mesa-dri)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

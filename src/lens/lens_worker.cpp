@@ -1,5 +1,6 @@
 #include "geolens/lens/lens_worker.h"
 
+#include <chrono>
 #include <exception>
 #include <utility>
 
@@ -7,8 +8,29 @@
 
 namespace geolens {
 
+LensJob method_job(std::shared_ptr<const LensMethod> method, double width, double height) {
+  require(method != nullptr, "method_job", "the method is null");
+  return [method = std::move(method), width, height](const std::vector<Lens>& lenses,
+                                                     const SolveControl&) {
+    return std::shared_ptr<const Magnification>(
+        std::make_shared<const Magnification>(method->magnify(lenses, width, height)));
+  };
+}
+
 LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress)
-    : session_(std::move(session)), progress_(std::move(progress)), thread_([this] { run(); }) {}
+    : LensWorker(
+          [session = std::make_shared<LensSession>(std::move(session))](
+              const std::vector<Lens>& lenses, const SolveControl& control) {
+            return std::shared_ptr<const Magnification>(
+                std::make_shared<const LensResult>(session->update(lenses, control)));
+          },
+          std::move(progress)) {}
+
+LensWorker::LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress)
+    : job_(std::move(job)), progress_(std::move(progress)) {
+  require(bool(job_), "LensWorker", "the job is empty");
+  thread_ = std::thread([this] { run(); });
+}
 
 LensWorker::~LensWorker() {
   {
@@ -63,20 +85,27 @@ void LensWorker::run() {
       cancel_ = false;
     }
     SolveControl control{&cancel_, progress_};
-    std::shared_ptr<const LensResult> result;
+    const auto start = std::chrono::steady_clock::now();
+    std::shared_ptr<const Magnification> result;
     std::string error;
     try {
-      result = std::make_shared<const LensResult>(session_.update(lenses, control));
+      result = job_(lenses, control);
+      // A job that cannot stop midway finishes; a cancelled request's answer is dropped all the
+      // same.
+      if (cancel_.load()) result = nullptr;
     } catch (const Cancelled&) {
       // dropped: latest() keeps the frame before
     } catch (const std::exception& e) {
       error = e.what();
     }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (result) {
         latest_.request = request;
         latest_.result = std::move(result);
+        latest_.solve_ms = ms;
         latest_.failed_request = 0;
         latest_.error.clear();
       } else if (!error.empty()) {

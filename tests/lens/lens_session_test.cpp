@@ -10,6 +10,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_worker.h"
 #include "geolens/measure/distortion.h"
 #include "support/lens_options.h"
@@ -99,7 +100,7 @@ TEST(LensSession, UpdateSurvivesAnErraticSequence) {
 }
 
 // The largest distance between two warps' screen positions (same mesh), pixels.
-double screen_gap(const LensResult& a, const LensResult& b) {
+double screen_gap(const Magnification& a, const Magnification& b) {
   EXPECT_EQ(a.warp.screen.rows(), b.warp.screen.rows());
   if (a.warp.screen.rows() != b.warp.screen.rows()) return INFINITY;
   return (a.warp.screen - b.warp.screen).rowwise().norm().maxCoeff();
@@ -234,6 +235,39 @@ TEST(LensWorker, CancelDropsTheSolveUnderWay) {
   EXPECT_EQ(worker.submit({Lens{Region::circle({520, 500}, 150), 2.0}}), 3u);
   worker.wait_idle();
   EXPECT_EQ(worker.latest().request, 3u);
+}
+
+// Any lens method runs on a worker: a classic lens answers the latest request as a direct call
+// would, and a request cancelled while its (unstoppable) solve runs is dropped.
+TEST(LensWorker, RunsAClassicLensAndDropsACancelledAnswer) {
+  auto fisheye = std::make_shared<const ClassicMethod>(ClassicLens::kFisheye);
+  std::atomic<bool> armed{false}, running{false};
+  LensWorker worker{method_job(fisheye, 1024, 1024), nullptr};
+  worker.submit({focus_circle(500, 480)});
+  worker.wait_idle();
+  LensFrame frame = worker.latest();
+  ASSERT_NE(frame.result, nullptr);
+  EXPECT_GT(frame.solve_ms, 0);
+  EXPECT_LT(screen_gap(*frame.result, fisheye->magnify({focus_circle(500, 480)}, 1024, 1024)),
+            1e-9);
+  // Cancel a request while it runs: a job that sleeps until told, on the same contract.
+  LensWorker slow{
+      [&](const std::vector<Lens>& lenses, const SolveControl&) {
+        running = true;
+        while (!armed) std::this_thread::yield();
+        return std::shared_ptr<const Magnification>(
+            std::make_shared<const Magnification>(fisheye->magnify(lenses, 1024, 1024)));
+      },
+      nullptr};
+  slow.submit({focus_circle(500, 480)});
+  while (!running) std::this_thread::yield();
+  slow.cancel();
+  armed = true;
+  slow.wait_idle();
+  EXPECT_EQ(slow.latest().request, 0u);
+  EXPECT_EQ(slow.latest().result, nullptr);
+  EXPECT_THROW(LensWorker(LensJob(), nullptr), InvalidInput);
+  EXPECT_THROW(method_job(nullptr, 10, 10), InvalidInput);
 }
 
 // A request that fails keeps the last result on show and says why; the next success clears it.

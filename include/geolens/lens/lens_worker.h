@@ -12,28 +12,43 @@
 #include <vector>
 
 #include "geolens/core/solve_control.h"
+#include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_session.h"
 
 namespace geolens {
 
+/// What a LensWorker runs for each request: solves `lenses`, checking `control` where it can,
+/// and returns the result (any lens method's Magnification; a LensSession's is a LensResult).
+using LensJob = std::function<std::shared_ptr<const Magnification>(const std::vector<Lens>&,
+                                                                   const SolveControl&)>;
+
+/// A LensJob that runs `method` on a width x height source (it cannot be stopped midway; a
+/// cancelled request's answer is dropped).
+LensJob method_job(std::shared_ptr<const LensMethod> method, double width, double height);
+
 /// What the worker has to show: the latest result it finished, and the latest error.
 struct LensFrame {
-  std::uint64_t request = 0;                 ///< the request `result` answers; 0: none yet
-  std::shared_ptr<const LensResult> result;  ///< null before the first success
+  std::uint64_t request = 0;                    ///< the request `result` answers; 0: none yet
+  std::shared_ptr<const Magnification> result;  ///< null before the first success
+  double solve_ms = 0;                          ///< wall-clock time of that solve, milliseconds
   /// The latest request that failed (InvalidInput, SolverError) after `request`, and why; 0 and
   /// empty if none did.
   std::uint64_t failed_request = 0;
   std::string error;
 };
 
-/// Runs a LensSession on a worker thread. The UI thread submits the lenses of each frame and
-/// draws latest() meanwhile; only the newest request waits (one submitted while another waits
-/// replaces it), so the worker never falls behind the pointer. Every call is thread-safe.
+/// Runs a LensSession (or any lens method) on a worker thread. The UI thread submits the lenses
+/// of each frame and draws latest() meanwhile; only the newest request waits (one submitted
+/// while another waits replaces it), so the worker never falls behind the pointer. Every call
+/// is thread-safe.
 class LensWorker {
  public:
-  /// `progress` (optional) is called on the worker thread during each solve.
+  /// The geometric lens, frame after frame (its results are LensResults). `progress`
+  /// (optional) is called on the worker thread during each solve.
   explicit LensWorker(LensSession session,
                       std::function<void(const SolveProgress&)> progress = nullptr);
+  /// Any job, e.g. method_job(a ClassicMethod).
+  explicit LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress = nullptr);
   /// Stops the solve under way and joins the thread.
   ~LensWorker();
   LensWorker(const LensWorker&) = delete;
@@ -52,7 +67,7 @@ class LensWorker {
  private:
   void run();
 
-  LensSession session_;
+  LensJob job_;
   std::function<void(const SolveProgress&)> progress_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
@@ -61,7 +76,7 @@ class LensWorker {
   bool busy_ = false, stop_ = false;
   std::atomic<bool> cancel_{false};
   LensFrame latest_;
-  std::thread thread_;  // last: starts once the members above exist
+  std::thread thread_;  // started by the constructor, once every member above exists
 };
 
 }  // namespace geolens

@@ -1,0 +1,232 @@
+// geolens-view: drag geometric (or classic) lenses across an image, solved on a worker thread
+// and drawn on the GPU; or, with --script / --screenshot, the same headless for tests and
+// pictures.
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/image.h"
+#include "geolens/lens/geometric_lens.h"
+#include "panel.h"
+#include "script.h"
+#include "viewer.h"
+#include "warp_renderer.h"
+#include "window.h"
+
+using namespace geolens;
+using namespace geolens::view;
+
+namespace {
+
+struct Args {
+  std::string image, model = "focus", method = "geometric", script, screenshot, size;
+  std::vector<std::string> lenses;
+  int mesh = 100, frames = 2;
+  bool stats = false;
+};
+
+// "WxH", each side in [64, 8192].
+std::pair<int, int> parse_size(const std::string& text) {
+  const size_t x = text.find('x');
+  require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
+  const double w = parse_number(text.substr(0, x), "--size width", true);
+  const double h = parse_number(text.substr(x + 1), "--size height", true);
+  require(w >= 64 && w <= 8192 && h >= 64 && h <= 8192, "--size",
+          "sides must be in [64, 8192], got '" + text + "'");
+  return {int(w), int(h)};
+}
+
+// The window events, handed to the viewer (keys that are the frame loop's own go there too).
+class Input final : public WindowInput {
+ public:
+  explicit Input(Viewer& viewer) : viewer_(viewer) {}
+  void mouse_move(const Eigen::Vector2d& at) override { viewer_.mouse_move(at); }
+  void mouse_button(Button button, bool pressed, Modifiers mods) override {
+    viewer_.mouse_button(button, pressed, mods);
+  }
+  void scroll(double dy, Modifiers mods) override { viewer_.scroll(dy, mods); }
+  void key(Key key) override {
+    if (key == Key::kDelete) viewer_.delete_selected();
+    if (key == Key::kFit) viewer_.fit_view();
+    if (key == Key::kWireframe) viewer_.wireframe = !viewer_.wireframe;
+  }
+  void drop(const std::string& path) override { viewer_.try_open(path); }
+
+ private:
+  Viewer& viewer_;
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+int run(const Args& a) {
+  using Clock = std::chrono::steady_clock;
+  // Everything is checked before a window opens.
+  require(a.screenshot.empty() || !a.image.empty(), "--screenshot", "needs an IMAGE");
+  require(a.script.empty() || !a.image.empty(), "--script", "needs an IMAGE");
+  require(a.frames >= 1, "--frames", "must be >= 1, got " + std::to_string(a.frames));
+  if (!a.screenshot.empty()) check_screenshot_path(a.screenshot, a.image, "--screenshot");
+  const auto [width, height] = a.size.empty() ? std::pair{1280, 800} : parse_size(a.size);
+  LensOptions options;
+  options.mesh = a.mesh;
+  options.model = parse_lens_model(a.model);
+  Viewer viewer(options, a.method);
+  if (!a.image.empty()) viewer.open(load_image(a.image), a.image);
+  for (const std::string& spec : a.lenses) {
+    require(viewer.has_image(), "--lens", "needs an IMAGE");
+    try {
+      viewer.add_lenses(spec);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("--lens " + spec + ": " + e.what());
+    }
+  }
+  viewer.select(std::nullopt);
+  ScriptRunner script;
+  if (!a.script.empty()) script = ScriptRunner(a.script, parse_script(a.script, a.image));
+
+  const bool headless = script.active() || !a.screenshot.empty();
+  Window window(width, height, "geolens-view", !headless);
+  WarpRenderer renderer;
+  Input input(viewer);
+  window.set_input(&input);
+  PanelState panel;
+  std::optional<std::string> panel_shot;  // asked in the panel: taken at the next frame
+  std::uint64_t shown_image = 0, shown_frame = 0;
+  std::vector<double> frame_ms, latency_ms;
+  auto last = Clock::now();
+  for (int frame = 0;; ++frame) {
+    window.poll();
+    if (window.should_close()) break;
+    viewer.set_window(window.framebuffer_width(), window.framebuffer_height());
+    const ScriptActions actions = script.step(frame, viewer);
+    const bool final = !a.screenshot.empty() && frame + 1 >= a.frames;
+    // A picture taken is the answer to every request made: deterministic.
+    if (!actions.screenshots.empty() || final || panel_shot)
+      viewer.wait_idle();
+    else
+      viewer.update();
+    const bool fresh = viewer.frame_generation() != shown_frame;
+    if (viewer.image_generation() != shown_image) {
+      renderer.set_image(viewer.image());
+      shown_image = viewer.image_generation();
+    }
+    if (fresh) {
+      renderer.set_mesh(viewer.frame().result->warp);
+      shown_frame = viewer.frame_generation();
+    }
+    DrawSettings settings;
+    settings.window_width = window.framebuffer_width();
+    settings.window_height = window.framebuffer_height();
+    settings.origin = viewer.origin();
+    settings.scale = viewer.scale();
+    settings.wireframe = viewer.wireframe;
+    if (viewer.outlines)
+      for (const Lens& lens : viewer.frame().lenses)
+        if (const std::optional<Circle> c = lens.region.circle())
+          settings.outlines.emplace_back(c->center.x(), c->center.y(), c->radius);
+    if (viewer.selected() && viewer.frame().lenses.size() == viewer.lenses().size())
+      settings.selected = int(*viewer.selected());
+    if (!viewer.has_image()) settings.scale = 0;
+    renderer.draw(settings);
+    // Pictures of the view alone, then of the view with the panel.
+    for (const ScriptActions::Shot& shot : actions.screenshots)
+      if (!shot.panel) save_image(shot.path, window.read_back_buffer());
+    if (final) save_image(a.screenshot, window.read_back_buffer());
+    if (panel_shot) {
+      try {
+        save_image(*panel_shot, window.read_back_buffer());
+        viewer.message = "saved " + *panel_shot;
+      } catch (const std::exception& e) {
+        viewer.message = e.what();
+      }
+      panel_shot.reset();
+    }
+    window.begin_ui();
+    if (viewer.panel) panel_shot = draw_panel(viewer, panel).screenshot;
+    window.end_ui();
+    for (const ScriptActions::Shot& shot : actions.screenshots)
+      if (shot.panel) save_image(shot.path, window.read_back_buffer());
+    window.swap();
+    const auto now = Clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    panel.frame_ms = panel.frame_ms == 0 ? ms : 0.9 * panel.frame_ms + 0.1 * ms;
+    if (frame > 0) frame_ms.push_back(ms);
+    if (fresh && frame > 0)
+      latency_ms.push_back(
+          std::chrono::duration<double, std::milli>(now - viewer.frame_requested_at()).count());
+    if (actions.quit || final) break;
+  }
+  if (a.stats) {
+    std::printf(
+        "frames %zu: frame time median %.1f ms, p95 %.1f ms; move to shown (%zu frames shown) "
+        "median %.1f ms, p95 %.1f ms; solve (last) %.1f ms; %s\n",
+        frame_ms.size() + 1, percentile(frame_ms, 0.5), percentile(frame_ms, 0.95),
+        latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
+        viewer.frame().solve_ms, window.gl_description().c_str());
+  }
+  return 0;
+}
+
+// One line, whatever the message holds.
+std::string one_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"geolens-view: drag geometric focus+context lenses across an image"};
+  app.set_version_flag("--version", std::string("geolens-view ") + GEOLENS_VERSION);
+  Args a;
+  app.add_option("image", a.image, "image to show (PNG or JPEG)");
+  app.add_option("--lens", a.lenses,
+                 "circle:CX,CY,R[:ZOOM] (source pixels), polygon:FILE[:ZOOM] or "
+                 "mask:FILE[:ZOOM]; repeatable");
+  app.add_option("--method", a.method, "geometric, or a classic lens: " + method_list())
+      ->capture_default_str();
+  app.add_option("--model", a.model, "geometric lens model: focus, lift, field or auto")
+      ->capture_default_str();
+  app.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
+      ->capture_default_str();
+  app.add_option("--script", a.script, "play timed events from FILE (see the README)");
+  app.add_option("--screenshot", a.screenshot,
+                 "draw --frames frames, wait for the solver, save the view to OUT.png and exit");
+  app.add_option("--frames", a.frames, "frames drawn before --screenshot")->capture_default_str();
+  app.add_option("--size", a.size, "window size WxH, pixels (default 1280x800)");
+  app.add_flag("--stats", a.stats,
+               "print frame time and move-to-shown latency (median, p95) at exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "geolens-view: error: " << one_line(e.what()) << " (see geolens-view --help)\n";
+    return 2;
+  }
+  try {
+    return run(a);
+  } catch (const InvalidInput& e) {
+    std::cerr << "geolens-view: error: " << one_line(e.what()) << '\n';
+    return 2;
+  } catch (const WindowError& e) {
+    std::cerr << "geolens-view: error: " << one_line(e.what()) << '\n';
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "geolens-view: failed: " << one_line(e.what()) << '\n';
+    return 1;
+  }
+}

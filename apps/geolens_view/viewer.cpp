@@ -1,0 +1,403 @@
+#include "viewer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <utility>
+
+#include "geolens/core/errors.h"
+#include "geolens/geometry/roi.h"
+#include "geolens/lens/lens_spec.h"
+#include "geolens/lens/lift.h"
+#include "geolens/measure/distortion.h"
+
+namespace geolens::view {
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+// The region moved by `delta` and scaled by `factor` about its peak, source pixels; nullopt
+// for a kind that cannot be (a mask blob). Throws InvalidInput for a degenerate result.
+std::optional<Region> transformed(const Region& region, const Eigen::Vector2d& delta,
+                                  double factor) {
+  if (const std::optional<Circle> c = region.circle())
+    return Region::circle(c->center + delta, c->radius * factor);
+  if (region.kind() != "polygon") return std::nullopt;
+  const Eigen::Vector2d peak = region.peak();
+  std::vector<Eigen::Vector2d> vertices = region.anchors();
+  for (Eigen::Vector2d& v : vertices) v = peak + delta + (v - peak) * factor;
+  return Region::polygon(vertices);
+}
+
+}  // namespace
+
+Viewer::Viewer(const LensOptions& options, const std::string& method)
+    : options_(options), method_(method) {
+  validate(options_);
+  require(is_method_name(method_), "--method",
+          "unknown method '" + method_ + "' (" + method_list() + ")");
+}
+
+void Viewer::open(Image image, const std::string& path) {
+  require(image.width > 0 && image.height > 0, "Viewer::open", "'" + path + "' is empty");
+  image_ = std::move(image);
+  image_path_ = path;
+  ++image_generation_;
+  // Keep the lenses that still fit.
+  std::vector<Lens> kept;
+  std::vector<std::string> specs;
+  for (size_t i = 0; i < lenses_.size(); ++i) {
+    try {
+      validate_lens(lenses_[i], image_.width, image_.height);
+      kept.push_back(lenses_[i]);
+      specs.push_back(specs_[i]);
+    } catch (const InvalidInput&) {
+    }
+  }
+  lenses_ = std::move(kept);
+  specs_ = std::move(specs);
+  selected_.reset();
+  dragged_.reset();
+  // Until the first answer, the image as it is.
+  auto identity = std::make_shared<Magnification>();
+  identity->warp = identity_warp(image_.width, image_.height);
+  frame_ = SolvedFrame();
+  frame_.result = std::move(identity);
+  ++frame_generation_;
+  measures_ = {};
+  restart_solver();
+  fit_view();
+}
+
+std::string Viewer::try_open(const std::string& path) {
+  try {
+    open(load_image(path), path);
+    message.clear();
+    return "";
+  } catch (const std::exception& e) {
+    message = e.what();
+    return message;
+  }
+}
+
+void Viewer::add_lenses(const std::string& spec) {
+  require(has_image(), "add", "no image is open");
+  const std::vector<Lens> parsed =
+      parse_lens_spec(spec, 2.0, Profile::kGaussian, 0, image_.width, image_.height);
+  const std::optional<LensSpecFile> file = lens_spec_file(spec);
+  for (size_t k = 0; k < parsed.size(); ++k) {
+    lenses_.push_back(parsed[k]);
+    // A mask's blobs come back from the one file: exported once, with the first blob.
+    specs_.push_back(file && k == 0 ? file->kind + ":" + file->path : "");
+  }
+  selected_ = lenses_.size() - 1;
+  changed(false);
+}
+
+void Viewer::add_lens(const Lens& lens) {
+  require(has_image(), "add", "no image is open");
+  validate_lens(lens, image_.width, image_.height);
+  lenses_.push_back(lens);
+  specs_.push_back("");
+  selected_ = lenses_.size() - 1;
+  changed(false);
+}
+
+void Viewer::check_index(size_t index, const std::string& what) const {
+  require(index < lenses_.size(), what.c_str(),
+          "no lens " + std::to_string(index + 1) + " (there are " + std::to_string(lenses_.size()) +
+              ")");
+}
+
+void Viewer::remove_lens(size_t index) {
+  check_index(index, "remove");
+  lenses_.erase(lenses_.begin() + long(index));
+  specs_.erase(specs_.begin() + long(index));
+  if (dragged_) dragged_.reset();
+  selected_.reset();
+  changed(false);
+}
+
+void Viewer::move_lens(size_t index, const Eigen::Vector2d& peak, bool dragging) {
+  check_index(index, "move");
+  Lens& lens = lenses_[index];
+  // Kept in the image: a circle's centre, every vertex of a polygon.
+  const Eigen::AlignedBox2d bounds =
+      lens.region.circle() ? Eigen::AlignedBox2d(lens.region.peak(), lens.region.peak())
+                           : lens.region.bounds();
+  const Eigen::Vector2d lo = -bounds.min(),
+                        hi = Eigen::Vector2d(image_.width, image_.height) - bounds.max();
+  const Eigen::Vector2d delta = (peak - lens.region.peak()).cwiseMax(lo).cwiseMin(hi);
+  const std::optional<Region> moved = transformed(lens.region, delta, 1.0);
+  require(moved.has_value(), "move", "a " + lens.region.kind() + " lens cannot be moved");
+  Lens next = lens;
+  next.region = *moved;
+  validate_lens(next, image_.width, image_.height);
+  lens = next;
+  if (lens.region.kind() == "polygon") specs_[index].clear();
+  changed(dragging);
+}
+
+void Viewer::set_zoom(size_t index, double zoom) {
+  check_index(index, "zoom");
+  require(std::isfinite(zoom), "zoom", "zoom must be finite");
+  lenses_[index].zoom = std::clamp(zoom, 1.0, 8.0);
+  changed(false);
+}
+
+void Viewer::set_radius(size_t index, double radius) {
+  check_index(index, "radius");
+  require(std::isfinite(radius) && radius > 0, "radius",
+          "radius must be > 0, got " + number(radius));
+  Lens& lens = lenses_[index];
+  radius = std::clamp(radius, 2.0, double(std::max(image_.width, image_.height)));
+  const std::optional<Region> scaled =
+      transformed(lens.region, Eigen::Vector2d::Zero(), radius / lens.region.size());
+  require(scaled.has_value(), "radius", "a " + lens.region.kind() + " lens cannot be resized");
+  Lens next = lens;
+  next.region = *scaled;
+  validate_lens(next, image_.width, image_.height);
+  lens = next;
+  if (lens.region.kind() == "polygon") specs_[index].clear();
+  changed(false);
+}
+
+std::string Viewer::lens_arguments() const {
+  std::string out =
+      "--model " + to_string(options_.model) + " --mesh " + std::to_string(options_.mesh);
+  std::string notes;
+  std::vector<std::string> files;
+  for (size_t i = 0; i < lenses_.size(); ++i) {
+    const Lens& l = lenses_[i];
+    if (const std::optional<Circle> c = l.region.circle()) {
+      out += " --lens circle:" + number(c->center.x()) + "," + number(c->center.y()) + "," +
+             number(c->radius) + ":" + number(l.zoom);
+    } else if (!specs_[i].empty()) {
+      if (std::find(files.begin(), files.end(), specs_[i]) != files.end()) continue;
+      files.push_back(specs_[i]);
+      out += " --lens " + specs_[i] + ":" + number(l.zoom);
+    } else if (l.region.kind() == "polygon") {
+      notes += "  # lens " + std::to_string(i + 1) + ": a moved polygon has no file";
+    }
+  }
+  return out + notes;
+}
+
+void Viewer::set_method(const std::string& method) {
+  require(is_method_name(method), "set method",
+          "unknown method '" + method + "' (" + method_list() + ")");
+  if (method == method_) return;
+  method_ = method;
+  restart_solver();
+}
+
+void Viewer::set_mesh(int mesh) {
+  LensOptions next = options_;
+  next.mesh = mesh;
+  validate(next);
+  if (next.mesh == options_.mesh) return;
+  options_ = next;
+  restart_solver();
+}
+
+void Viewer::set_model(LensModel model) {
+  if (model == options_.model) return;
+  options_.model = model;
+  restart_solver();
+}
+
+void Viewer::restart_solver() {
+  if (!has_image()) return;
+  solver_.reset();  // cancels the solve under way before the next starts
+  solver_ = std::make_unique<LensSolver>(image_.width, image_.height, method_, options_);
+  accepted_request_ = 0;
+  requested_at_.clear();
+  changed(false);
+}
+
+void Viewer::changed(bool dragging) {
+  dirty_ = true;
+  if (!dragging) drop_stale_ = true;
+}
+
+void Viewer::set_window(int width, int height) {
+  window_width_ = std::max(width, 1);
+  window_height_ = std::max(height, 1);
+}
+
+double Viewer::scale() const {
+  if (!has_image()) return 1;
+  return view_zoom_ *
+         std::min(double(window_width_) / image_.width, double(window_height_) / image_.height);
+}
+
+Eigen::Vector2d Viewer::origin() const {
+  const Eigen::Vector2d window(window_width_, window_height_);
+  const Eigen::Vector2d size(image_.width, image_.height);
+  return (window - size * scale()) / 2 + pan_;
+}
+
+void Viewer::fit_view() {
+  view_zoom_ = 1;
+  pan_.setZero();
+}
+
+const WarpMap* Viewer::warp_map() {
+  if (!frame_.result) return nullptr;
+  if (!map_ || map_generation_ != frame_generation_) {
+    map_.emplace(frame_.result->warp);
+    map_generation_ = frame_generation_;
+  }
+  return &*map_;
+}
+
+std::optional<size_t> Viewer::lens_at(const Eigen::Vector2d& at) {
+  const WarpMap* map = warp_map();
+  if (!map) return std::nullopt;
+  const std::optional<Eigen::Vector2d> p = map->inverse((at - origin()) / scale());
+  if (!p) return std::nullopt;
+  std::optional<size_t> best;
+  for (size_t i = 0; i < lenses_.size(); ++i)
+    if (lenses_[i].region.distance(*p) <= 0 &&
+        (!best || lenses_[i].region.size() < lenses_[*best].region.size()))
+      best = i;
+  return best;
+}
+
+void Viewer::mouse_move(const Eigen::Vector2d& at) {
+  const Eigen::Vector2d delta = at - mouse_;
+  mouse_ = at;
+  if (dragged_) {
+    try {
+      move_lens(*dragged_, drag_peak_ + (at - drag_from_) / scale(), true);
+    } catch (const InvalidInput& e) {
+      message = e.what();
+      dragged_.reset();
+    }
+  }
+  if (panning_) pan_ += delta;
+}
+
+void Viewer::mouse_button(Button button, bool pressed, Modifiers mods) {
+  if (!has_image()) return;
+  if (button == Button::kRight) {
+    panning_ = pressed;
+    return;
+  }
+  if (!pressed) {
+    dragged_.reset();
+    return;
+  }
+  if (mods.ctrl) {
+    // A circle lens at the source point shown under the pointer.
+    const WarpMap* map = warp_map();
+    const std::optional<Eigen::Vector2d> p =
+        map ? map->inverse((mouse_ - origin()) / scale()) : std::nullopt;
+    if (!p) return;
+    const double radius = std::max(8.0, 0.08 * std::min(image_.width, image_.height));
+    try {
+      add_lens(Lens{Region::circle(*p, radius), 2.0});
+    } catch (const InvalidInput& e) {
+      message = e.what();
+    }
+    return;
+  }
+  selected_ = lens_at(mouse_);
+  if (selected_) {
+    dragged_ = selected_;
+    drag_from_ = mouse_;
+    drag_peak_ = lenses_[*selected_].region.peak();
+  }
+}
+
+void Viewer::scroll(double dy, Modifiers mods) {
+  if (!has_image() || dy == 0) return;
+  if (const std::optional<size_t> lens = lens_at(mouse_)) {
+    selected_ = lens;
+    try {
+      if (mods.shift)
+        set_radius(*lens, lenses_[*lens].region.size() * std::pow(1.1, dy));
+      else
+        set_zoom(*lens, lenses_[*lens].zoom + 0.25 * dy);
+    } catch (const InvalidInput& e) {
+      message = e.what();
+    }
+    return;
+  }
+  // Zoom the whole view about the pointer: the source point under it stays there.
+  const Eigen::Vector2d under = (mouse_ - origin()) / scale();
+  view_zoom_ = std::clamp(view_zoom_ * std::pow(1.15, dy), 0.1, 64.0);
+  pan_.setZero();
+  pan_ = mouse_ - under * scale() - origin();
+}
+
+void Viewer::delete_selected() {
+  if (selected_) remove_lens(*selected_);
+}
+
+bool Viewer::update() {
+  if (!solver_) return false;
+  const auto now = std::chrono::steady_clock::now();
+  if (dirty_) {
+    requested_at_.emplace_back(solver_->submit(lenses_, drop_stale_), now);
+    dirty_ = drop_stale_ = false;
+  }
+  SolvedFrame f = solver_->latest();
+  if (!f.error.empty()) message = f.error;
+  if (f.request == 0 || f.request == accepted_request_) return false;
+  if (f.error.empty()) message.clear();  // a solve succeeded: what failed before is past
+  accepted_request_ = f.request;
+  frame_ = std::move(f);
+  ++frame_generation_;
+  frame_requested_at_ = now;
+  for (const auto& [request, at] : requested_at_)
+    if (request == frame_.request) frame_requested_at_ = at;
+  std::erase_if(requested_at_, [&](const auto& r) { return r.first <= frame_.request; });
+  measure();
+  return true;
+}
+
+void Viewer::wait_idle() {
+  if (!solver_) return;
+  update();  // submits what changed
+  solver_->wait_idle();
+  update();
+}
+
+void Viewer::measure() {
+  measures_ = {};
+  if (!frame_.result) return;
+  const WarpMesh& warp = frame_.result->warp;
+  const TriangleDistortion d = measure_triangles(warp);
+  const DistortionSummary s = summarize(d);
+  measures_.flipped = s.flipped;
+  measures_.conformal_mean = s.conformal_mean;
+  measures_.zoom_measured = frame_.result->zoom_measured;
+  const std::vector<Lens>& lenses = frame_.lenses;
+  measures_.flips.assign(lenses.size(), 0);
+  if (lenses.empty()) return;
+  for (Eigen::Index f = 0; f < d.flipped.size(); ++f) {
+    if (!d.flipped(f)) continue;
+    const Eigen::Vector2d c = (warp.source.row(warp.F(f, 0)) + warp.source.row(warp.F(f, 1)) +
+                               warp.source.row(warp.F(f, 2)))
+                                  .transpose() /
+                              3;
+    size_t nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < lenses.size(); ++k)
+      if (const double dist = lenses[k].region.distance(c); dist < best) {
+        best = dist;
+        nearest = k;
+      }
+    ++measures_.flips[nearest];
+  }
+}
+
+}  // namespace geolens::view
