@@ -113,13 +113,18 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
 
 void Flattener::factorize() const {
   if (!solver_x_) {
+    // Both or neither: a y system that fails after x was built must not leave x alone, which
+    // later solves would take for both coordinates.
+    std::unique_ptr<DirichletSolver> x, y;
     if (fix_x_ == fix_y_) {
-      solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_);
+      x = std::make_unique<DirichletSolver>(L_, fix_x_);
     } else {
       parallel_invoke(
-          *pool_, [&] { solver_x_ = std::make_unique<DirichletSolver>(L_, fix_x_); },
-          [&] { solver_y_ = std::make_unique<DirichletSolver>(L_, fix_y_); });
+          *pool_, [&] { x = std::make_unique<DirichletSolver>(L_, fix_x_); },
+          [&] { y = std::make_unique<DirichletSolver>(L_, fix_y_); });
     }
+    solver_x_ = std::move(x);
+    solver_y_ = std::move(y);
     changed_.clear();
     return;
   }
