@@ -127,28 +127,34 @@ void Viewer::remove_lens(size_t index) {
 
 void Viewer::move_lens(size_t index, const Eigen::Vector2d& peak, bool dragging) {
   check_index(index, "move");
-  Lens& lens = lenses_[index];
-  // Kept in the image: a circle's centre, every vertex of a polygon.
-  const Eigen::AlignedBox2d bounds =
-      lens.region.circle() ? Eigen::AlignedBox2d(lens.region.peak(), lens.region.peak())
-                           : lens.region.bounds();
+  const Region& region = lenses_[index].region;
+  // Kept in the image: the points that define the region (a circle's centre, a polygon's
+  // vertices), which validate_lens checks.
+  Eigen::AlignedBox2d bounds;
+  for (const Eigen::Vector2d& anchor : region.anchors()) bounds.extend(anchor);
   const Eigen::Vector2d lo = -bounds.min(),
                         hi = Eigen::Vector2d(image_.width, image_.height) - bounds.max();
-  const Eigen::Vector2d delta = (peak - lens.region.peak()).cwiseMax(lo).cwiseMin(hi);
-  const std::optional<Region> moved = transformed(lens.region, delta, 1.0);
-  require(moved.has_value(), "move", "a " + lens.region.kind() + " lens cannot be moved");
+  const Eigen::Vector2d delta = (peak - region.peak()).cwiseMax(lo).cwiseMin(hi);
+  replace_region(index, transformed(region, delta, 1.0), "move", "moved");
+  changed(dragging);
+}
+
+void Viewer::replace_region(size_t index, const std::optional<Region>& region, const char* what,
+                            const char* done) {
+  Lens& lens = lenses_[index];
+  require(region.has_value(), what, "a " + lens.region.kind() + " lens cannot be " + done);
   Lens next = lens;
-  next.region = *moved;
+  next.region = *region;
   validate_lens(next, image_.width, image_.height);
   lens = next;
+  // A changed polygon is no longer the file its spec names.
   if (lens.region.kind() == "polygon") specs_[index].clear();
-  changed(dragging);
 }
 
 void Viewer::set_zoom(size_t index, double zoom) {
   check_index(index, "zoom");
   require(std::isfinite(zoom), "zoom", "zoom must be finite");
-  lenses_[index].zoom = std::clamp(zoom, 1.0, 8.0);
+  lenses_[index].zoom = std::clamp(zoom, kMinZoom, kMaxZoom);
   changed(false);
 }
 
@@ -156,16 +162,10 @@ void Viewer::set_radius(size_t index, double radius) {
   check_index(index, "radius");
   require(std::isfinite(radius) && radius > 0, "radius",
           "radius must be > 0, got " + number(radius));
-  Lens& lens = lenses_[index];
+  const Region& region = lenses_[index].region;
   radius = std::clamp(radius, 2.0, double(std::max(image_.width, image_.height)));
-  const std::optional<Region> scaled =
-      transformed(lens.region, Eigen::Vector2d::Zero(), radius / lens.region.size());
-  require(scaled.has_value(), "radius", "a " + lens.region.kind() + " lens cannot be resized");
-  Lens next = lens;
-  next.region = *scaled;
-  validate_lens(next, image_.width, image_.height);
-  lens = next;
-  if (lens.region.kind() == "polygon") specs_[index].clear();
+  replace_region(index, transformed(region, Eigen::Vector2d::Zero(), radius / region.size()),
+                 "radius", "resized");
   changed(false);
 }
 

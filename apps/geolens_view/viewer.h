@@ -109,6 +109,10 @@ class Viewer {
 
  private:
   void changed(bool dragging);
+  // Puts `region` in lens `index` (validated as a lens on the image), or throws InvalidInput
+  // naming `what` that this kind of lens cannot be `done` when it is empty.
+  void replace_region(size_t index, const std::optional<Region>& region, const char* what,
+                      const char* done);
   void restart_solver();
   const WarpMap* warp_map();
   void measure();
