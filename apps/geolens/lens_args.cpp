@@ -1,6 +1,7 @@
 #include "lens_args.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "geolens/core/errors.h"
@@ -78,15 +79,18 @@ LensOptions parse_options(const LensArgs& a) {
   return options;
 }
 
-std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
+std::vector<Lens> parse_lenses(const LensArgs& a, int width, int height) {
   const Profile profile = parse_profile(a.profile);
   std::vector<Lens> lenses;
   for (const std::string& spec : a.lenses) {
-    for (Lens& lens :
-         parse_lens_spec(spec, a.zoom, profile, a.footprint, source.width, source.height))
+    for (Lens& lens : parse_lens_spec(spec, a.zoom, profile, a.footprint, width, height))
       lenses.push_back(std::move(lens));
   }
   return lenses;
+}
+
+std::vector<Lens> parse_lenses(const LensArgs& a, const Image& source) {
+  return parse_lenses(a, source.width, source.height);
 }
 
 std::vector<LensSpecFile> lens_files(const LensArgs& a) {
@@ -94,6 +98,20 @@ std::vector<LensSpecFile> lens_files(const LensArgs& a) {
   for (const std::string& spec : a.lenses)
     if (const std::optional<LensSpecFile> file = lens_spec_file(spec)) files.push_back(*file);
   return files;
+}
+
+// "WxH", each side in [1, 16384].
+std::pair<int, int> parse_size(const std::string& text) {
+  auto side = [&](const std::string& s) {
+    char* end = nullptr;
+    const long v = std::strtol(s.c_str(), &end, 10);
+    require(!s.empty() && end == s.c_str() + s.size() && v >= 1 && v <= 16384, "--size",
+            "expected WxH with sides in [1, 16384], got '" + text + "'");
+    return int(v);
+  };
+  const size_t x = text.find('x');
+  require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
+  return {side(text.substr(0, x)), side(text.substr(x + 1))};
 }
 
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geolens/io/image.h"
@@ -29,13 +30,19 @@ void add_lens_options(CLI::App& command, LensArgs& args);
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.
 LensOptions parse_options(const LensArgs& args);
 
-/// The lenses of every --lens value (parse_lens_spec, lens/lens_spec.h), validated against
-/// `source`. Throws InvalidInput naming the offending value.
+/// The lenses of every --lens value (parse_lens_spec, lens/lens_spec.h), validated against a
+/// source of width x height pixels. Throws InvalidInput naming the offending value.
+std::vector<Lens> parse_lenses(const LensArgs& args, int width, int height);
+/// parse_lenses against the size of `source`.
 std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
 
 /// The files of the polygon:FILE and mask:FILE lenses, read from the values alone (a malformed
 /// value is left to parse_lenses to reject).
 std::vector<LensSpecFile> lens_files(const LensArgs& args);
+
+/// The size "WxH" given to --size, each side in [1, 16384] pixels; throws InvalidInput naming
+/// --size otherwise.
+std::pair<int, int> parse_size(const std::string& text);
 
 /// Prints a warning on stderr for each lens that does not fit where it is (the largest zoom
 /// that fits, for the focus model) or misses its requested zoom by more than 10 %.

@@ -12,37 +12,26 @@
 #include "geolens/core/errors.h"
 #include "geolens/eval/run_stats.h"
 #include "geolens/io/file_io.h"
+#include "geolens/io/geojson.h"
 #include "geolens/io/image.h"
 #include "geolens/io/mesh_io.h"
 #include "geolens/io/run_files.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/render/annotate.h"
+#include "geolens/render/overlay.h"
 #include "geolens/render/render.h"
 #include "lens_args.h"
+#include "map.h"
 
 using namespace geolens;
 
 namespace {
 
 struct MagnifyArgs {
-  std::string input, output, stats, export_mesh, before_after, size;
+  std::string input, output, stats, export_mesh, before_after, size, overlay;
   cli::LensArgs lens;
 };
-
-// "WxH", each side in [1, 16384].
-std::pair<int, int> parse_size(const std::string& text) {
-  auto side = [&](const std::string& s) {
-    char* end = nullptr;
-    const long v = std::strtol(s.c_str(), &end, 10);
-    require(!s.empty() && end == s.c_str() + s.size() && v >= 1 && v <= 16384, "--size",
-            "expected WxH with sides in [1, 16384], got '" + text + "'");
-    return int(v);
-  };
-  const size_t x = text.find('x');
-  require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
-  return {side(text.substr(0, x)), side(text.substr(x + 1))};
-}
 
 int run_magnify(const MagnifyArgs& a) {
   using Clock = std::chrono::steady_clock;
@@ -55,6 +44,7 @@ int run_magnify(const MagnifyArgs& a) {
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
   RunFiles files;
   files.add_input("the input image", a.input);
+  if (!a.overlay.empty()) files.add_input("the --overlay file", a.overlay);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
     files.add_input("the --lens " + f.kind + " file", f.path);
   files.add_output("--output", a.output);
@@ -76,10 +66,12 @@ int run_magnify(const MagnifyArgs& a) {
     return ms;
   };
   lap();
+  const std::optional<VectorData> overlay =
+      a.overlay.empty() ? std::nullopt : std::optional(read_geojson(a.overlay));
   const Image source = load_image(a.input);
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
   const auto [width, height] =
-      a.size.empty() ? std::pair{source.width, source.height} : parse_size(a.size);
+      a.size.empty() ? std::pair{source.width, source.height} : cli::parse_size(a.size);
   timings.load = lap();
 
   const GeometricLens lens(source.width, source.height, options);
@@ -99,7 +91,7 @@ int run_magnify(const MagnifyArgs& a) {
   render_options.width = width;
   render_options.height = height;
   render_options.threads = options.flatten.threads;
-  const Image output = render(result.warp, pyramid, render_options);
+  Image output = render(result.warp, pyramid, render_options);
   Image before;
   if (!a.before_after.empty()) {
     before = render(identity_warp(source.width, source.height), pyramid, render_options);
@@ -107,6 +99,20 @@ int run_magnify(const MagnifyArgs& a) {
     for (const Lens& l : lenses) regions.push_back(l.region);
     outline_regions(before, regions, Eigen::Vector2d::Zero(), double(width) / source.width,
                     double(height) / source.height);
+  }
+  if (overlay) {
+    // The features mapped through the warp as rendered, drawn in colour (grey made RGB).
+    const MappedFeatures mapped =
+        map_features(*overlay, framed_warp_map(result.warp, width, height));
+    warn_about_losses(mapped.losses, "the overlay", "the source image");
+    if (output.channels < 3) output = to_rgb(output);
+    draw_overlay(output, mapped.data);
+    if (!a.before_after.empty()) {
+      const WarpMap identity =
+          framed_warp_map(identity_warp(source.width, source.height), width, height);
+      if (before.channels < 3) before = to_rgb(before);
+      draw_overlay(before, map_features(*overlay, identity).data);
+    }
   }
   timings.render = lap();
 
@@ -144,8 +150,13 @@ int main(int argc, char** argv) {
                       "write PREFIX_3d.obj (lifted) and PREFIX_flat.obj (flattened)");
   magnify->add_option("--before-after", a.before_after,
                       "write the input (lenses outlined) and the output side by side");
+  magnify->add_option("--overlay", a.overlay,
+                      "draw the features of a GeoJSON file (source pixels) over the output, "
+                      "mapped through the lens");
   CompareArgs compare_args;
   CLI::App* compare = add_compare_command(app, compare_args);
+  MapArgs map_args;
+  CLI::App* map = add_map_command(app, map_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -161,6 +172,7 @@ int main(int argc, char** argv) {
   try {
     if (magnify->parsed()) return run_magnify(a);
     if (compare->parsed()) return run_compare(compare_args);
+    if (map->parsed()) return run_map(map_args);
   } catch (const InvalidInput& e) {
     std::cerr << "geolens: error: " << e.what() << '\n';
     return 2;

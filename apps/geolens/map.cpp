@@ -1,0 +1,179 @@
+#include "map.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <variant>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+#include "geolens/io/geojson.h"
+#include "geolens/io/image.h"
+#include "geolens/io/point_csv.h"
+#include "geolens/io/run_files.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
+
+namespace geolens {
+
+namespace {
+
+enum class Format { kCsv, kGeoJson };
+
+std::optional<Format> format_of(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension == ".csv") return Format::kCsv;
+  if (extension == ".geojson" || extension == ".json") return Format::kGeoJson;
+  return std::nullopt;
+}
+
+const char* name_of(Format f) { return f == Format::kCsv ? "CSV" : "GeoJSON"; }
+
+bool to_stdout(const MapArgs& a) { return a.output.empty() || a.output == "-"; }
+
+// --format, else the input's extension, else the output's; the output's extension, if it names
+// a format, must agree.
+Format pick_format(const MapArgs& a) {
+  std::optional<Format> f;
+  if (!a.format.empty()) {
+    require(a.format == "csv" || a.format == "geojson", "--format",
+            "expected csv or geojson, got '" + a.format + "'");
+    f = a.format == "csv" ? Format::kCsv : Format::kGeoJson;
+  } else if (a.input != "-") {
+    f = format_of(a.input);
+    require(f.has_value(), "--format",
+            "cannot tell the format of '" + a.input +
+                "' from its extension (.csv, .geojson, .json): give --format csv or geojson");
+  } else {
+    if (!to_stdout(a)) f = format_of(a.output);
+    require(f.has_value(), "--format",
+            "reading standard input needs --format csv or geojson (or an --output with that "
+            "extension)");
+  }
+  if (!to_stdout(a)) {
+    const std::optional<Format> out = format_of(a.output);
+    require(!out || *out == *f, "--output",
+            "'" + a.output + "' is " + name_of(*out) + " but the data is " + name_of(*f) +
+                " (the output has the input's format)");
+  }
+  return *f;
+}
+
+std::string standard_input() {
+  std::stringstream text;
+  text << std::cin.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "map", "map points (CSV) or features (GeoJSON) through the lens: source -> screen pixels");
+  c->add_option("input", a.input,
+                "CSV ('x,y' per line, optional header, further columns kept) or GeoJSON file; "
+                "'-' reads standard input")
+      ->required();
+  c->add_option("-o,--output", a.output, "output file (default: standard output), never the input");
+  cli::add_lens_options(*c, a.lens);
+  c->add_option("--image", a.image, "the source image the lenses are placed on (its size)");
+  c->add_option("--size", a.size,
+                "output size WxH, as magnify's (default: the source's); without --image also "
+                "the source's size");
+  c->add_flag("--inverse", a.inverse, "map screen -> source pixels instead");
+  c->add_option("--max-segment", a.max_segment,
+                "longest segment of a line or ring before it is mapped, pixels of the input "
+                "side, > 0")
+      ->capture_default_str();
+  c->add_option("--format", a.format, "csv or geojson (default: from the file extension)");
+  return c;
+}
+
+WarpMap framed_warp_map(const WarpMesh& warp, int width, int height) {
+  require(warp.screen_width > 0 && warp.screen_height > 0 && width > 0 && height > 0,
+          "framed_warp_map", "the warp's frame and the output size must be positive");
+  WarpMesh framed = warp;
+  framed.screen.col(0) *= double(width) / warp.screen_width;
+  framed.screen.col(1) *= double(height) / warp.screen_height;
+  framed.screen_width = width;
+  framed.screen_height = height;
+  return WarpMap(std::move(framed));
+}
+
+void warn_about_losses(const MapLosses& losses, const std::string& what, const std::string& area) {
+  if (!losses.any()) return;
+  std::cerr << "geolens: warning: " << what << " is partly outside " << area << ": "
+            << losses.points << " points dropped, " << losses.lines << " lines cut, "
+            << losses.polygons << " polygons dropped\n";
+}
+
+int run_map(const MapArgs& a) {
+  // Everything checked and the input read before the lenses are solved.
+  const Format format = pick_format(a);
+  require(!a.image.empty() || !a.size.empty(), "map",
+          "the lenses need the source's size: give --image FILE or --size WxH");
+  require(a.max_segment > 0, "--max-segment",
+          "must be > 0 pixels, got " + std::to_string(a.max_segment));
+  RunFiles files;
+  if (a.input != "-") files.add_input("the input", a.input);
+  if (!a.image.empty()) files.add_input("the --image", a.image);
+  for (const LensSpecFile& f : cli::lens_files(a.lens))
+    files.add_input("the --lens " + f.kind + " file", f.path);
+  if (!to_stdout(a)) files.add_output("--output", a.output);
+  files.check();
+  const std::string name = a.input == "-" ? "standard input" : a.input;
+  std::variant<PointTable, VectorData> data;
+  if (format == Format::kCsv)
+    data = a.input == "-" ? parse_point_csv(standard_input(), name) : read_point_csv(a.input);
+  else
+    data = a.input == "-" ? parse_geojson(standard_input(), name) : read_geojson(a.input);
+  const LensOptions options = cli::parse_options(a.lens);
+  std::pair<int, int> source_size, output_size;
+  if (!a.size.empty()) output_size = cli::parse_size(a.size);
+  if (!a.image.empty()) {
+    const Image image = load_image(a.image);
+    source_size = {image.width, image.height};
+    if (a.size.empty()) output_size = source_size;
+  } else {
+    source_size = output_size;
+  }
+  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source_size.first, source_size.second);
+
+  const LensResult result =
+      GeometricLens(source_size.first, source_size.second, options).solve(lenses);
+  cli::warn_about_zooms(lenses, result);
+  if (const int flipped = summarize(measure_triangles(result.warp)).flipped; flipped > 0)
+    std::cerr << "geolens: warning: " << flipped
+              << " triangles are flipped (folded): where they fold, a screen point shows several "
+                 "source points and --inverse gives one of them\n";
+  const WarpMap map = framed_warp_map(result.warp, output_size.first, output_size.second);
+  const MapDirection direction = a.inverse ? MapDirection::kInverse : MapDirection::kForward;
+  std::string text;
+  MapLosses losses;
+  if (const PointTable* table = std::get_if<PointTable>(&data)) {
+    MappedPoints mapped = map_points(*table, map, direction);
+    text = point_csv_text(mapped.table);
+    losses = mapped.losses;
+  } else {
+    MappedFeatures mapped =
+        map_features(std::get<VectorData>(data), map, MapOptions{direction, a.max_segment});
+    text = geojson_text(mapped.data);
+    losses = mapped.losses;
+  }
+  warn_about_losses(losses, "the input", a.inverse ? "the output frame" : "the source image");
+  if (to_stdout(a)) {
+    std::cout << text << std::flush;
+    if (!std::cout) throw IoError("map: cannot write to standard output");
+    return 0;
+  }
+  write_file(files.staged(a.output), text);
+  files.commit();
+  return 0;
+}
+
+}  // namespace geolens

@@ -1,0 +1,40 @@
+#pragma once
+// GeoJSON files (RFC 7946) of vector data in pixels: read, written back, and the properties of a
+// feature looked up.
+
+#include <optional>
+#include <string>
+
+#include "geolens/io/vector_data.h"
+
+namespace geolens {
+
+/// Parses a GeoJSON document: a FeatureCollection, a Feature or a bare geometry (Point,
+/// MultiPoint, LineString, MultiLineString, Polygon, MultiPolygon, GeometryCollection). Its
+/// coordinates are taken as pixels (x right, y down; no coordinate reference system is applied),
+/// each position exactly two numbers (an altitude is refused, not dropped). A feature's "id" and
+/// "properties" are kept as JSON text, key order included; "bbox" and any other member are
+/// ignored (a bbox would be stale once the coordinates are mapped).
+/// @param name  where the text came from (a file name, "standard input"), for messages
+/// Throws InvalidInput("parse_geojson: '<name>': <where>: <what>") for text that is not JSON
+/// (with its line and column), an unknown or missing "type", a member of the wrong kind, a
+/// position that is not two finite numbers, or a geometry_problem (vector_data.h); <where> names
+/// the feature by its index and the coordinate by its indices ("feature 3: LineString
+/// coordinates[2]").
+VectorData parse_geojson(const std::string& text, const std::string& name);
+
+/// parse_geojson of the file at `path`. Throws InvalidInput naming the path if it cannot be read.
+VectorData read_geojson(const std::string& path);
+
+/// `data` as GeoJSON text with the same top-level object it was read from, one feature per line
+/// in a FeatureCollection, coordinates in the shortest form that reads back to the same double
+/// (so a write / read round trip is exact), ids and properties as read. A kGeometry root whose
+/// feature has no geometry is written as an empty GeometryCollection. Throws InvalidInput naming
+/// the problem for data with a vector_data_problem or an id or properties that are not JSON.
+std::string geojson_text(const VectorData& data);
+
+/// The value of the property `key` of `feature` if its properties are an object whose `key` is a
+/// string; empty otherwise.
+std::optional<std::string> string_property(const Feature& feature, const std::string& key);
+
+}  // namespace geolens

@@ -1,0 +1,118 @@
+#include "geolens/io/point_csv.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "geolens/core/errors.h"
+
+namespace geolens {
+
+namespace {
+
+// The fields of a line cut at its first two commas: x, y and the rest from the second comma on
+// (each of x and y empty when missing).
+struct Fields {
+  std::string_view x, y, rest;
+  bool has_y = false;
+};
+
+Fields split(std::string_view line) {
+  Fields f;
+  const size_t first = line.find(',');
+  f.x = line.substr(0, first);
+  if (first == std::string_view::npos) return f;
+  f.has_y = true;
+  const size_t second = line.find(',', first + 1);
+  f.y = line.substr(first + 1, second == std::string_view::npos ? second : second - first - 1);
+  if (second != std::string_view::npos) f.rest = line.substr(second);
+  return f;
+}
+
+// The field as a finite number, spaces around it allowed.
+std::optional<double> number(std::string_view field) {
+  const size_t begin = field.find_first_not_of(" \t");
+  if (begin == std::string_view::npos) return std::nullopt;
+  field = field.substr(begin, field.find_last_not_of(" \t") - begin + 1);
+  double v = 0;
+  const auto [end, status] = std::from_chars(field.data(), field.data() + field.size(), v);
+  if (status != std::errc() || end != field.data() + field.size() || !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+void append_number(std::string& text, double v) {
+  char buffer[32];
+  const auto [end, status] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  text.append(buffer, end);
+}
+
+}  // namespace
+
+PointTable parse_point_csv(const std::string& text, const std::string& name) {
+  PointTable table;
+  std::vector<double> coordinates;
+  std::string_view rest = text;
+  bool first = true;  // the first line that is not blank: perhaps the header
+  for (int number_of_line = 1; !rest.empty(); ++number_of_line) {
+    const size_t end = rest.find('\n');
+    std::string_view line = rest.substr(0, end);
+    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
+    const Fields f = split(line);
+    const std::optional<double> x = number(f.x), y = number(f.y);
+    if (first && !x && !y) {
+      table.header = line;
+      first = false;
+      continue;
+    }
+    first = false;
+    require(x && y && f.has_y, "parse_point_csv",
+            name + ":" + std::to_string(number_of_line) +
+                ": expected two finite numbers \"x,y\" first, got \"" + std::string(line) + "\"");
+    coordinates.push_back(*x);
+    coordinates.push_back(*y);
+    table.rest.emplace_back(f.rest);
+  }
+  table.points = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+      coordinates.data(), Eigen::Index(coordinates.size() / 2), 2);
+  return table;
+}
+
+PointTable read_point_csv(const std::string& path) {
+  std::error_code error;
+  require(!std::filesystem::is_directory(path, error), "read_point_csv",
+          "'" + path + "' is a directory, not a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  require(bool(in), "read_point_csv", "cannot open '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  require(!in.bad(), "read_point_csv", "error while reading '" + path + "'");
+  return parse_point_csv(text.str(), path);
+}
+
+std::string point_csv_text(const PointTable& table) {
+  require(table.rest.size() == size_t(table.points.rows()), "point_csv_text",
+          "rest has " + std::to_string(table.rest.size()) + " rows for " +
+              std::to_string(table.points.rows()) + " points");
+  std::string text;
+  if (!table.header.empty()) text += table.header + "\n";
+  for (Eigen::Index i = 0; i < table.points.rows(); ++i) {
+    require(table.points.row(i).allFinite(), "point_csv_text",
+            "point " + std::to_string(i) + " is not finite");
+    append_number(text, table.points(i, 0));
+    text += ',';
+    append_number(text, table.points(i, 1));
+    text += table.rest[size_t(i)];
+    text += '\n';
+  }
+  return text;
+}
+
+}  // namespace geolens
