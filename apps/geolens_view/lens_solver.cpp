@@ -84,6 +84,14 @@ SolvedFrame LensSolver::latest() const {
     shown_.result = std::move(result);
     shown_.lenses = it->second.lenses;
     shown_.solve_ms = ms;
+    shown_.stages.reset();
+    shown_.solves = 0;
+    if (method_ == "geometric") {
+      // A LensSession's worker answers with LensResults (lens_worker.h).
+      const auto& solved = static_cast<const LensResult&>(*shown_.result);
+      shown_.stages = solved.timings;
+      shown_.solves = solved.solves;
+    }
     pending_.erase(pending_.begin(), std::next(it));
   }
   shown_.error = std::move(error);

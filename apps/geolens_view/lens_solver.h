@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct SolvedFrame {
   std::shared_ptr<const Magnification> result;  ///< null before the first answer
   std::vector<Lens> lenses;                     ///< the lenses `result` was solved for
   double solve_ms = 0;                          ///< wall-clock time of that solve, milliseconds
+  /// The geometric lens's stages of that solve (LensResult::timings, summed over its `solves`
+  /// calibration solves); none for a classic lens, which has no stages, or the identity.
+  std::optional<StageTimings> stages;
+  int solves = 0;
   std::string error;  ///< why the latest request after `request` failed; empty if none did
 };
 

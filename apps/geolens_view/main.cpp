@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -26,7 +27,7 @@ using namespace geolens::view;
 namespace {
 
 struct Args {
-  std::string image, model = "focus", method = "geometric", script, screenshot, size;
+  std::string image, model = "focus", method = "geometric", split, script, screenshot, size;
   std::vector<std::string> lenses;
   int mesh = 100, frames = 2;
   bool stats = false;
@@ -56,6 +57,9 @@ class Input final : public WindowInput {
     if (key == Key::kDelete) viewer_.delete_selected();
     if (key == Key::kFit) viewer_.fit_view();
     if (key == Key::kWireframe) viewer_.wireframe = !viewer_.wireframe;
+    if (key == Key::kHeatmap) viewer_.heatmap = !viewer_.heatmap;
+    if (key == Key::kPolygon) viewer_.start_polygon();
+    if (key == Key::kEscape) viewer_.cancel_polygon();
   }
   void drop(const std::string& path) override { viewer_.try_open(path); }
 
@@ -81,6 +85,7 @@ int run(const Args& a) {
   options.mesh = a.mesh;
   options.model = parse_lens_model(a.model);
   Viewer viewer(options, a.method);
+  viewer.set_split(a.split);
   if (!a.image.empty()) viewer.open(load_image(a.image), a.image);
   for (const std::string& spec : a.lenses) {
     require(viewer.has_image(), "--lens", "needs an IMAGE");
@@ -101,7 +106,14 @@ int run(const Args& a) {
   window.set_input(&input);
   PanelState panel;
   std::optional<std::string> panel_shot;  // asked in the panel: taken at the next frame
-  std::uint64_t shown_image = 0, shown_frame = 0;
+  std::uint64_t shown_image = 0;
+  // What the GPU holds per pane: the frame's generation, and the frame and scale of its heatmap
+  // (0: none).
+  struct Shown {
+    std::uint64_t frame = 0, heat_frame = 0;
+    double heat_max = 0;
+  };
+  std::array<Shown, WarpRenderer::kPanes> shown;
   std::vector<double> frame_ms, latency_ms;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
@@ -115,29 +127,49 @@ int run(const Args& a) {
       viewer.wait_idle();
     else
       viewer.update();
-    const bool fresh = viewer.frame_generation() != shown_frame;
+    const bool fresh = viewer.frame_generation() != shown[0].frame;
     if (viewer.image_generation() != shown_image) {
       renderer.set_image(viewer.image());
       shown_image = viewer.image_generation();
     }
-    if (fresh) {
-      renderer.set_mesh(viewer.frame().result->warp);
-      shown_frame = viewer.frame_generation();
+    const int panes = viewer.split().empty() ? 1 : 2;
+    renderer.clear(window.framebuffer_width(), window.framebuffer_height());
+    for (int pane = 0; pane < panes; ++pane) {
+      const SolvedFrame& solved = pane == 0 ? viewer.frame() : viewer.split_frame();
+      if (!solved.result) continue;  // no image yet
+      const FrameMeasures& measures = pane == 0 ? viewer.measures() : viewer.split_measures();
+      const std::uint64_t generation =
+          pane == 0 ? viewer.frame_generation() : viewer.split_generation();
+      Shown& on_gpu = shown[size_t(pane)];
+      if (on_gpu.frame != generation) {
+        renderer.set_mesh(pane, solved.result->warp);
+        on_gpu.frame = generation;
+      }
+      if (viewer.heatmap &&
+          (on_gpu.heat_frame != on_gpu.frame || on_gpu.heat_max != viewer.heat_max())) {
+        renderer.set_heat(pane, solved.result->warp,
+                          heat_colours(measures.triangles, viewer.heat_max()));
+        on_gpu.heat_frame = on_gpu.frame;
+        on_gpu.heat_max = viewer.heat_max();
+      }
+      DrawSettings settings;
+      settings.window_width = window.framebuffer_width();
+      settings.window_height = window.framebuffer_height();
+      settings.pane = pane;
+      settings.clip_x = pane * viewer.pane_width();
+      settings.clip_width = viewer.pane_width();
+      settings.origin = viewer.origin() + pane * viewer.pane_offset();
+      settings.scale = viewer.has_image() ? viewer.scale() : 0;
+      settings.wireframe = viewer.wireframe;
+      settings.heatmap = viewer.heatmap;
+      if (viewer.outlines)
+        for (const Lens& lens : solved.lenses)
+          if (const std::optional<Circle> c = lens.region.circle())
+            settings.outlines.emplace_back(c->center.x(), c->center.y(), c->radius);
+      if (viewer.selected() && solved.lenses.size() == viewer.lenses().size())
+        settings.selected = int(*viewer.selected());
+      renderer.draw(settings);
     }
-    DrawSettings settings;
-    settings.window_width = window.framebuffer_width();
-    settings.window_height = window.framebuffer_height();
-    settings.origin = viewer.origin();
-    settings.scale = viewer.scale();
-    settings.wireframe = viewer.wireframe;
-    if (viewer.outlines)
-      for (const Lens& lens : viewer.frame().lenses)
-        if (const std::optional<Circle> c = lens.region.circle())
-          settings.outlines.emplace_back(c->center.x(), c->center.y(), c->radius);
-    if (viewer.selected() && viewer.frame().lenses.size() == viewer.lenses().size())
-      settings.selected = int(*viewer.selected());
-    if (!viewer.has_image()) settings.scale = 0;
-    renderer.draw(settings);
     // Pictures of the view alone, then of the view with the panel.
     for (const ScriptActions::Shot& shot : actions.screenshots)
       if (!shot.panel) save_image(shot.path, window.read_back_buffer());
@@ -152,6 +184,7 @@ int run(const Args& a) {
       panel_shot.reset();
     }
     window.begin_ui();
+    draw_overlays(viewer);
     if (viewer.panel) panel_shot = draw_panel(viewer, panel).screenshot;
     window.end_ui();
     for (const ScriptActions::Shot& shot : actions.screenshots)
@@ -174,6 +207,15 @@ int run(const Args& a) {
         frame_ms.size() + 1, percentile(frame_ms, 0.5), percentile(frame_ms, 0.95),
         latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
         viewer.frame().solve_ms, window.gl_description().c_str());
+    if (const std::optional<StageTimings>& t = viewer.frame().stages)
+      std::printf(
+          "stages of the last solve (calibration solves: %d): lift %.2f ms, texture %.2f ms, "
+          "factorize %.2f ms, iterate %.2f ms, total %.2f ms\n",
+          viewer.frame().solves, t->lift, t->texture, t->factorize, t->iterate, t->total);
+    else
+      std::printf("stages: none (%s)\n", viewer.method().c_str());
+    std::printf("texture: level %d of the image, %d x %d texels\n", renderer.texture_level(),
+                renderer.texture_width(), renderer.texture_height());
   }
   return 0;
 }
@@ -196,6 +238,8 @@ int main(int argc, char** argv) {
                  "mask:FILE[:ZOOM]; repeatable");
   app.add_option("--method", a.method, "geometric, or a classic lens: " + method_list())
       ->capture_default_str();
+  app.add_option("--split", a.split,
+                 "show another method on the right half of the window, on the same lenses");
   app.add_option("--model", a.model, "geometric lens model: focus, lift, field or auto")
       ->capture_default_str();
   app.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")

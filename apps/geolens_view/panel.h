@@ -13,6 +13,7 @@ namespace geolens::view {
 struct PanelState {
   std::string open_path;
   std::string screenshot_path = "geolens-view.png";
+  std::string export_path = "geolens-view-lenses.txt";
   double frame_ms = 0;  ///< smoothed time between frames, milliseconds
 };
 
@@ -23,5 +24,10 @@ struct PanelRequests {
 
 /// Draws the panel (inside an ImGui frame) and applies what is changed in it to `viewer`.
 PanelRequests draw_panel(Viewer& viewer, PanelState& state);
+
+/// Draws over the picture, behind every ImGui window, panel or not: the outline of the polygon
+/// being drawn (its edges, the edge on to the pointer, a dot at each vertex), and while split
+/// each half's method.
+void draw_overlays(Viewer& viewer);
 
 }  // namespace geolens::view

@@ -92,36 +92,51 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
     if (name == "mesh") {
       const double m = parse_number(a[1], "set mesh", true);
       if (m < 4 || m > 1000) throw InvalidInput("set mesh: must be in [4, 1000], got " + a[1]);
-    } else if (name == "method") {
-      if (!is_method_name(a[1]))
-        throw InvalidInput("set method: unknown method '" + a[1] + "' (" + method_list() + ")");
+    } else if (name == "method" || name == "split") {
+      if (!is_method_name(a[1]) && !(name == "split" && a[1] == "off"))
+        throw InvalidInput("set " + name + ": unknown method '" + a[1] + "' (" + method_list() +
+                           (name == "split" ? ", or off)" : ")"));
     } else if (name == "model") {
       parse_lens_model(a[1]);
-    } else if (name == "wireframe" || name == "outlines" || name == "panel") {
+    } else if (name == "wireframe" || name == "heatmap" || name == "outlines" || name == "panel") {
       on_off(a[1]);
+    } else if (name == "heat_max") {
+      if (parse_number(a[1], "set heat_max") < 0)
+        throw InvalidInput("set heat_max: must be >= 0 (0: the largest shown), got " + a[1]);
     } else {
       throw InvalidInput("set: unknown option '" + name +
-                         "' (mesh, method, model, wireframe, outlines, panel)");
+                         "' (mesh, method, split, model, wireframe, heatmap, heat_max, outlines, "
+                         "panel)");
     }
   } else if (c == "mouse") {
     count(2, 2, "X Y (window pixels)");
     numbers(0, 2);
   } else if (c == "press" || c == "release") {
-    count(1, 3, "left|right [ctrl] [shift]");
+    count(1, 4, "left|right [ctrl] [shift] [double]");
     if (a[0] != "left" && a[0] != "right")
       throw InvalidInput("expected the button left or right, got '" + a[0] + "'");
     for (size_t i = 1; i < a.size(); ++i)
-      if (a[i] != "ctrl" && a[i] != "shift")
-        throw InvalidInput("expected the modifier ctrl or shift, got '" + a[i] + "'");
+      if (a[i] != "ctrl" && a[i] != "shift" && a[i] != "double")
+        throw InvalidInput("expected the modifier ctrl, shift or double, got '" + a[i] + "'");
+  } else if (c == "polygon") {
+    if (a.size() < 6 || a.size() % 2 != 0)
+      throw InvalidInput("'polygon' takes X Y pairs of at least 3 vertices (window pixels), got " +
+                         std::to_string(a.size()) + " numbers");
+    numbers(0, a.size());
+  } else if (c == "export") {
+    count(1, 1, "PATH (.txt)");
+    check_export_path(a[0], input_image);
   } else if (c == "scroll") {
     count(1, 2, "DY [shift]");
     numbers(0, 1);
     if (a.size() == 2 && a[1] != "shift")
       throw InvalidInput("expected the modifier shift, got '" + a[1] + "'");
   } else if (c == "key") {
-    count(1, 1, "delete|fit|wireframe");
-    if (a[0] != "delete" && a[0] != "fit" && a[0] != "wireframe")
-      throw InvalidInput("unknown key '" + a[0] + "' (delete, fit, wireframe)");
+    count(1, 1, "delete|fit|wireframe|heatmap|polygon|escape");
+    if (a[0] != "delete" && a[0] != "fit" && a[0] != "wireframe" && a[0] != "heatmap" &&
+        a[0] != "polygon" && a[0] != "escape")
+      throw InvalidInput("unknown key '" + a[0] +
+                         "' (delete, fit, wireframe, heatmap, polygon, escape)");
   } else if (c == "screenshot") {
     count(1, 2, "PATH [panel]");
     check_screenshot_path(a[0], input_image, "screenshot");
@@ -132,7 +147,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
   } else {
     throw InvalidInput("unknown command '" + c +
                        "' (move, drag, zoom, radius, add, remove, select, set, mouse, press, "
-                       "release, scroll, key, screenshot, wait, quit)");
+                       "release, scroll, key, polygon, export, screenshot, wait, quit)");
   }
 }
 
@@ -214,7 +229,8 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
   };
   auto mods = [&](size_t from) {
     Modifiers m;
-    for (size_t i = from; i < a.size(); ++i) (a[i] == "ctrl" ? m.ctrl : m.shift) = true;
+    for (size_t i = from; i < a.size(); ++i)
+      (a[i] == "ctrl" ? m.ctrl : a[i] == "shift" ? m.shift : m.double_click) = true;
     return m;
   };
   if (c == "move") {
@@ -237,20 +253,41 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
     const std::string& name = a[0];
     if (name == "mesh") viewer.set_mesh(int(num(1)));
     if (name == "method") viewer.set_method(a[1]);
+    if (name == "split") viewer.set_split(a[1] == "off" ? "" : a[1]);
     if (name == "model") viewer.set_model(parse_lens_model(a[1]));
     if (name == "wireframe") viewer.wireframe = a[1] == "on";
+    if (name == "heatmap") viewer.heatmap = a[1] == "on";
+    if (name == "heat_max") viewer.set_heat_max(num(1));
     if (name == "outlines") viewer.outlines = a[1] == "on";
     if (name == "panel") viewer.panel = a[1] == "on";
   } else if (c == "mouse") {
     viewer.mouse_move({num(0), num(1)});
   } else if (c == "press" || c == "release") {
     viewer.mouse_button(a[0] == "left" ? Button::kLeft : Button::kRight, c == "press", mods(1));
+  } else if (c == "polygon") {
+    // As the mouse draws one: P, a click at each vertex, a double click at the last.
+    viewer.start_polygon();
+    Modifiers second;
+    second.double_click = true;
+    for (size_t i = 0; i < a.size(); i += 2) {
+      viewer.mouse_move({num(i), num(i + 1)});
+      viewer.mouse_button(Button::kLeft, true, {});
+      viewer.mouse_button(Button::kLeft, false, {});
+    }
+    viewer.mouse_button(Button::kLeft, true, second);
+    viewer.mouse_button(Button::kLeft, false, {});
+    if (viewer.drawing_polygon()) throw InvalidInput("polygon: " + viewer.message);
+  } else if (c == "export") {
+    viewer.export_lenses(a[0]);
   } else if (c == "scroll") {
     viewer.scroll(num(0), mods(1));
   } else if (c == "key") {
     if (a[0] == "delete") viewer.delete_selected();
     if (a[0] == "fit") viewer.fit_view();
     if (a[0] == "wireframe") viewer.wireframe = !viewer.wireframe;
+    if (a[0] == "heatmap") viewer.heatmap = !viewer.heatmap;
+    if (a[0] == "polygon") viewer.start_polygon();
+    if (a[0] == "escape") viewer.cancel_polygon();
   } else if (c == "screenshot") {
     actions.screenshots.push_back({a[0], a.size() == 2});
   } else if (c == "wait") {

@@ -4,14 +4,17 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "geolens/core/errors.h"
 #include "geolens/geometry/roi.h"
+#include "geolens/io/file_io.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/lens/lift.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/render/heatmap.h"
 
 namespace geolens::view {
 
@@ -37,6 +40,17 @@ std::optional<Region> transformed(const Region& region, const Eigen::Vector2d& d
 }
 
 }  // namespace
+
+std::vector<std::array<uint8_t, 3>> heat_colours(const TriangleDistortion& triangles,
+                                                 double max_value) {
+  require(max_value > 0, "heat_colours", "the maximum must be > 0, got " + number(max_value));
+  std::vector<std::array<uint8_t, 3>> colours(size_t(triangles.conformal.size()));
+  for (size_t f = 0; f < colours.size(); ++f)
+    colours[f] = triangles.flipped(Eigen::Index(f))
+                     ? kFlippedColour
+                     : heat_colour(triangles.conformal(Eigen::Index(f)) / max_value);
+  return colours;
+}
 
 Viewer::Viewer(const LensOptions& options, const std::string& method)
     : options_(options), method_(method) {
@@ -65,13 +79,17 @@ void Viewer::open(Image image, const std::string& path) {
   specs_ = std::move(specs);
   selected_.reset();
   dragged_.reset();
+  drawn_.reset();
   // Until the first answer, the image as it is.
   auto identity = std::make_shared<Magnification>();
   identity->warp = identity_warp(image_.width, image_.height);
   frame_ = SolvedFrame();
   frame_.result = std::move(identity);
   ++frame_generation_;
-  measures_ = {};
+  measures_ = measure_frame(frame_);
+  split_.frame = frame_;
+  ++split_.generation;
+  split_.measures = measures_;
   restart_solver();
   fit_view();
 }
@@ -184,10 +202,73 @@ std::string Viewer::lens_arguments() const {
       files.push_back(specs_[i]);
       out += " --lens " + specs_[i] + ":" + number(l.zoom);
     } else if (l.region.kind() == "polygon") {
-      notes += "  # lens " + std::to_string(i + 1) + ": a moved polygon has no file";
+      notes += "  # lens " + std::to_string(i + 1) + ": a polygon without a file (export it)";
     }
   }
   return out + notes;
+}
+
+void check_export_path(const std::string& path, const std::string& input_image) {
+  const std::filesystem::path file(path);
+  require(file.extension() == ".txt", "export", "'" + path + "' must end in .txt");
+  require(file.parent_path().empty() || std::filesystem::is_directory(file.parent_path()), "export",
+          "the folder of '" + path + "' does not exist");
+  require(input_image.empty() || !same_file(path, input_image), "export",
+          "'" + path + "' is the input image; it is never overwritten");
+}
+
+std::string Viewer::export_lenses(const std::string& path) {
+  check_export_path(path, image_path_);
+  const std::filesystem::path file(path);
+  const std::string stem = (file.parent_path() / file.stem()).string();
+  for (size_t i = 0; i < lenses_.size(); ++i) {
+    if (lenses_[i].region.kind() != "polygon" || !specs_[i].empty()) continue;
+    const std::string polygon = stem + "-lens-" + std::to_string(i + 1) + ".txt";
+    check_export_path(polygon, image_path_);
+    std::string text;
+    for (const Eigen::Vector2d& v : lenses_[i].region.anchors())
+      text += number(v.x()) + " " + number(v.y()) + "\n";
+    write_file(polygon, text);
+    specs_[i] = "polygon:" + polygon;
+  }
+  const std::string arguments = lens_arguments();
+  write_file(path, arguments + "\n");
+  return arguments;
+}
+
+void Viewer::start_polygon() {
+  if (!has_image()) return;
+  drawn_.emplace();
+  selected_.reset();
+  dragged_.reset();
+}
+
+size_t Viewer::polygon_vertices() const { return drawn_ ? drawn_->size() : 0; }
+
+std::vector<Eigen::Vector2d> Viewer::polygon_outline() {
+  std::vector<Eigen::Vector2d> outline;
+  if (!drawn_) return outline;
+  const WarpMap* map = warp_map();
+  for (const Eigen::Vector2d& p : *drawn_)
+    outline.push_back(origin() + (map ? map->forward(p).value_or(p) : p) * scale());
+  outline.push_back(mouse_);
+  return outline;
+}
+
+void Viewer::polygon_click(bool double_click) {
+  if (!double_click) {
+    // A vertex on the last one (the first click of a double click there) is not repeated.
+    const std::optional<Eigen::Vector2d> p = source_at(mouse_);
+    if (p && (drawn_->empty() || (drawn_->back() - *p).norm() * scale() >= 1))
+      drawn_->push_back(*p);
+    return;
+  }
+  try {
+    add_lens(Lens{Region::polygon(*drawn_), 2.0});
+    drawn_.reset();
+  } catch (const InvalidInput& e) {
+    message = e.what();  // the drawing stays, to be finished or cancelled (Escape)
+  }
 }
 
 void Viewer::set_method(const std::string& method) {
@@ -213,10 +294,23 @@ void Viewer::set_model(LensModel model) {
   restart_solver();
 }
 
+void Viewer::set_split(const std::string& method) {
+  require(method.empty() || is_method_name(method), "split",
+          "unknown method '" + method + "' (" + method_list() + ")");
+  if (method == split_.method) return;
+  split_.method = method;
+  restart_solver();
+}
+
 void Viewer::restart_solver() {
   if (!has_image()) return;
   solver_.reset();  // cancels the solve under way before the next starts
   solver_ = std::make_unique<LensSolver>(image_.width, image_.height, method_, options_);
+  split_.solver.reset();
+  split_.frame.request = 0;  // the new solver numbers its requests from 1
+  if (!split_.method.empty())
+    split_.solver =
+        std::make_unique<LensSolver>(image_.width, image_.height, split_.method, options_);
   accepted_request_ = 0;
   requested_at_.clear();
   changed(false);
@@ -227,6 +321,19 @@ void Viewer::changed(bool dragging) {
   if (!dragging) drop_stale_ = true;
 }
 
+double Viewer::heat_max() const {
+  if (heat_max_ > 0) return heat_max_;
+  double largest = measures_.conformal_max;
+  if (!split_.method.empty()) largest = std::max(largest, split_.measures.conformal_max);
+  return largest > 0 ? largest : 1;  // 0: the identity
+}
+
+void Viewer::set_heat_max(double value) {
+  require(std::isfinite(value) && value >= 0, "heat max",
+          "must be >= 0 (0: the largest shown), got " + number(value));
+  heat_max_ = value;
+}
+
 void Viewer::set_window(int width, int height) {
   window_width_ = std::max(width, 1);
   window_height_ = std::max(height, 1);
@@ -235,11 +342,11 @@ void Viewer::set_window(int width, int height) {
 double Viewer::scale() const {
   if (!has_image()) return 1;
   return view_zoom_ *
-         std::min(double(window_width_) / image_.width, double(window_height_) / image_.height);
+         std::min(double(pane_width()) / image_.width, double(window_height_) / image_.height);
 }
 
 Eigen::Vector2d Viewer::origin() const {
-  const Eigen::Vector2d window(window_width_, window_height_);
+  const Eigen::Vector2d window(pane_width(), window_height_);
   const Eigen::Vector2d size(image_.width, image_.height);
   return (window - size * scale()) / 2 + pan_;
 }
@@ -249,19 +356,32 @@ void Viewer::fit_view() {
   pan_.setZero();
 }
 
-const WarpMap* Viewer::warp_map() {
-  if (!frame_.result) return nullptr;
-  if (!map_ || map_generation_ != frame_generation_) {
-    map_.emplace(frame_.result->warp);
-    map_generation_ = frame_generation_;
+const WarpMap* Viewer::warp_map(int pane) {
+  const SolvedFrame& frame = pane == 0 ? frame_ : split_.frame;
+  std::optional<WarpMap>& map = pane == 0 ? map_ : split_.map;
+  std::uint64_t& generation = pane == 0 ? map_generation_ : split_.map_generation;
+  const std::uint64_t latest = pane == 0 ? frame_generation_ : split_.generation;
+  if (!frame.result) return nullptr;
+  if (!map || generation != latest) {
+    map.emplace(frame.result->warp);
+    generation = latest;
   }
-  return &*map_;
+  return &*map;
+}
+
+std::pair<int, Eigen::Vector2d> Viewer::pane_at(const Eigen::Vector2d& at) const {
+  if (split_.method.empty() || at.x() < pane_width()) return {0, at};
+  return {1, at - pane_offset()};
+}
+
+std::optional<Eigen::Vector2d> Viewer::source_at(const Eigen::Vector2d& at) {
+  const auto [pane, local] = pane_at(at);
+  const WarpMap* map = warp_map(pane);
+  return map ? map->inverse((local - origin()) / scale()) : std::nullopt;
 }
 
 std::optional<size_t> Viewer::lens_at(const Eigen::Vector2d& at) {
-  const WarpMap* map = warp_map();
-  if (!map) return std::nullopt;
-  const std::optional<Eigen::Vector2d> p = map->inverse((at - origin()) / scale());
+  const std::optional<Eigen::Vector2d> p = source_at(at);
   if (!p) return std::nullopt;
   std::optional<size_t> best;
   for (size_t i = 0; i < lenses_.size(); ++i)
@@ -295,11 +415,13 @@ void Viewer::mouse_button(Button button, bool pressed, Modifiers mods) {
     dragged_.reset();
     return;
   }
+  if (drawn_) {
+    polygon_click(mods.double_click);
+    return;
+  }
   if (mods.ctrl) {
     // A circle lens at the source point shown under the pointer.
-    const WarpMap* map = warp_map();
-    const std::optional<Eigen::Vector2d> p =
-        map ? map->inverse((mouse_ - origin()) / scale()) : std::nullopt;
+    const std::optional<Eigen::Vector2d> p = source_at(mouse_);
     if (!p) return;
     const double radius = std::max(8.0, 0.08 * std::min(image_.width, image_.height));
     try {
@@ -332,10 +454,11 @@ void Viewer::scroll(double dy, Modifiers mods) {
     return;
   }
   // Zoom the whole view about the pointer: the source point under it stays there.
-  const Eigen::Vector2d under = (mouse_ - origin()) / scale();
+  const Eigen::Vector2d pointer = pane_at(mouse_).second;
+  const Eigen::Vector2d under = (pointer - origin()) / scale();
   view_zoom_ = std::clamp(view_zoom_ * std::pow(1.15, dy), 0.1, 64.0);
   pan_.setZero();
-  pan_ = mouse_ - under * scale() - origin();
+  pan_ = pointer - under * scale() - origin();
 }
 
 void Viewer::delete_selected() {
@@ -347,7 +470,17 @@ bool Viewer::update() {
   const auto now = std::chrono::steady_clock::now();
   if (dirty_) {
     requested_at_.emplace_back(solver_->submit(lenses_, drop_stale_), now);
+    if (split_.solver) split_.solver->submit(lenses_, drop_stale_);
     dirty_ = drop_stale_ = false;
+  }
+  if (split_.solver) {
+    SolvedFrame f = split_.solver->latest();
+    if (!f.error.empty()) message = f.error;
+    if (f.request != 0 && f.request != split_.frame.request) {
+      split_.frame = std::move(f);
+      ++split_.generation;
+      split_.measures = measure_frame(split_.frame);
+    }
   }
   SolvedFrame f = solver_->latest();
   if (!f.error.empty()) message = f.error;
@@ -360,7 +493,7 @@ bool Viewer::update() {
   for (const auto& [request, at] : requested_at_)
     if (request == frame_.request) frame_requested_at_ = at;
   std::erase_if(requested_at_, [&](const auto& r) { return r.first <= frame_.request; });
-  measure();
+  measures_ = measure_frame(frame_);
   return true;
 }
 
@@ -368,21 +501,24 @@ void Viewer::wait_idle() {
   if (!solver_) return;
   update();  // submits what changed
   solver_->wait_idle();
+  if (split_.solver) split_.solver->wait_idle();
   update();
 }
 
-void Viewer::measure() {
-  measures_ = {};
-  if (!frame_.result) return;
-  const WarpMesh& warp = frame_.result->warp;
-  const TriangleDistortion d = measure_triangles(warp);
+FrameMeasures measure_frame(const SolvedFrame& frame) {
+  FrameMeasures m;
+  if (!frame.result) return m;
+  const WarpMesh& warp = frame.result->warp;
+  m.triangles = measure_triangles(warp);
+  const TriangleDistortion& d = m.triangles;
   const DistortionSummary s = summarize(d);
-  measures_.flipped = s.flipped;
-  measures_.conformal_mean = s.conformal_mean;
-  measures_.zoom_measured = frame_.result->zoom_measured;
-  const std::vector<Lens>& lenses = frame_.lenses;
-  measures_.flips.assign(lenses.size(), 0);
-  if (lenses.empty()) return;
+  m.flipped = s.flipped;
+  m.conformal_mean = s.conformal_mean;
+  m.conformal_max = s.conformal_max;
+  m.zoom_measured = frame.result->zoom_measured;
+  const std::vector<Lens>& lenses = frame.lenses;
+  m.flips.assign(lenses.size(), 0);
+  if (lenses.empty()) return m;
   for (Eigen::Index f = 0; f < d.flipped.size(); ++f) {
     if (!d.flipped(f)) continue;
     const Eigen::Vector2d c = (warp.source.row(warp.F(f, 0)) + warp.source.row(warp.F(f, 1)) +
@@ -396,8 +532,9 @@ void Viewer::measure() {
         best = dist;
         nearest = k;
       }
-    ++measures_.flips[nearest];
+    ++m.flips[nearest];
   }
+  return m;
 }
 
 }  // namespace geolens::view

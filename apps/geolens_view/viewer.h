@@ -4,6 +4,7 @@
 // no GL: the frame loop (main.cpp) draws what it says with WarpRenderer.
 
 #include <Eigen/Core>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_map.h"
 #include "lens_solver.h"
 
@@ -24,13 +26,29 @@ struct FrameMeasures {
   std::vector<int> flips;             ///< per lens: flipped triangles nearest to it
   int flipped = 0;                    ///< flipped triangles in all
   double conformal_mean = 0;          ///< area-weighted mean shape distortion, s1 / s2 - 1
+  double conformal_max = 0;           ///< the largest finite one
+  TriangleDistortion triangles;       ///< per triangle of the frame's warp
 };
+
+/// Measures the warp of `frame` (and its flips per lens of the frame).
+FrameMeasures measure_frame(const SolvedFrame& frame);
+
+/// The colour of each triangle in the shape-distortion heatmap, as `geolens compare` draws it
+/// (heatmap.h): heat_colour of its s1 / s2 - 1 over `max_value` (> 0), flipped triangles
+/// kFlippedColour.
+std::vector<std::array<uint8_t, 3>> heat_colours(const TriangleDistortion& triangles,
+                                                 double max_value);
 
 /// Mouse buttons and modifiers, as the window reports them (GLFW's values are not needed here).
 enum class Button { kLeft, kRight };
 struct Modifiers {
   bool ctrl = false, shift = false;
+  bool double_click = false;  ///< a press that is the second of a double click
 };
+
+/// Throws InvalidInput naming "export" unless `path` ends in .txt, its folder exists and it is
+/// not the file `input_image` (may be empty).
+void check_export_path(const std::string& path, const std::string& input_image);
 
 class Viewer {
  public:
@@ -65,8 +83,24 @@ class Viewer {
   /// Throws InvalidInput naming `what` unless `index` names a lens.
   void check_index(size_t index, const std::string& what) const;
   /// The lenses as --lens arguments (with --model and --mesh) for the CLI. A mask lens has no
-  /// text form and a moved polygon no file: both are said in a comment.
+  /// text form, and a polygon drawn or changed here has no file until export_lenses writes it:
+  /// both are said in a comment.
   std::string lens_arguments() const;
+  /// Writes lens_arguments() to `path` (a .txt file, never the input image), after writing each
+  /// polygon lens without a file to PATH-STEM-lens-N.txt ('x y' per vertex, the polygon spec's
+  /// format; N its number) and naming that file in its spec. Returns the arguments. Throws
+  /// InvalidInput for a bad path, IoError if a file cannot be written.
+  std::string export_lenses(const std::string& path);
+
+  // --- drawing a polygon lens: click the vertices, double-click to close ---
+  /// Starts drawing (the lens selection is dropped); a drawing under way starts again.
+  void start_polygon();
+  void cancel_polygon() { drawn_.reset(); }
+  bool drawing_polygon() const { return drawn_.has_value(); }
+  size_t polygon_vertices() const;  ///< clicked so far
+  /// Where the vertices clicked so far are shown (through the frame's warp), then the pointer:
+  /// window pixels, for the outline of the polygon being drawn. Empty when not drawing.
+  std::vector<Eigen::Vector2d> polygon_outline();
 
   // --- solver options ---
   void set_method(const std::string& method);
@@ -74,13 +108,25 @@ class Viewer {
   void set_model(LensModel model);
   const std::string& method() const { return method_; }
   const LensOptions& options() const { return options_; }
+  /// Split view: the window's left half shows the method, its right half `method` (one of
+  /// method_names()) on the same lenses, each solved by a solver of its own; "" ends it.
+  void set_split(const std::string& method);
+  const std::string& split() const { return split_.method; }
+  /// The right half's frame and its measures (while split).
+  const SolvedFrame& split_frame() const { return split_.frame; }
+  std::uint64_t split_generation() const { return split_.generation; }
+  const FrameMeasures& split_measures() const { return split_.measures; }
 
   // --- the view ---
   /// The window's framebuffer size, pixels; call before the input of each frame.
   void set_window(int width, int height);
-  /// Window pixels per source pixel, and where the source's origin is in the window.
+  /// Window pixels per source pixel, and where the source's origin is in the window (in the
+  /// left half, while split; the right half is pane_offset() further).
   double scale() const;
   Eigen::Vector2d origin() const;
+  /// The width of the window's half while split (its left half: [0, pane_width())), else of all.
+  int pane_width() const { return split_.method.empty() ? window_width_ : window_width_ / 2; }
+  Eigen::Vector2d pane_offset() const { return {pane_width(), 0}; }
   void fit_view();
 
   // --- input, in window pixels ---
@@ -90,6 +136,8 @@ class Viewer {
   void delete_selected();
   /// The lens whose region holds the source point shown at window point `at`, if any.
   std::optional<size_t> lens_at(const Eigen::Vector2d& at);
+  /// The source point shown at window point `at`, if the image is shown there.
+  std::optional<Eigen::Vector2d> source_at(const Eigen::Vector2d& at);
 
   // --- per frame ---
   /// Submits the lenses if they changed, then takes the solver's latest answer. Returns true if
@@ -102,7 +150,13 @@ class Viewer {
   /// When the request the frame answers was made (for move-to-shown latency).
   std::chrono::steady_clock::time_point frame_requested_at() const { return frame_requested_at_; }
 
+  /// The heatmap's red end, s1 / s2 - 1; by default the largest the frames show (as `geolens
+  /// compare` scales to the largest of the methods it shows).
+  double heat_max() const;
+  void set_heat_max(double value);  ///< >= 0; 0: the largest shown
+
   bool wireframe = false;
+  bool heatmap = false;  ///< the shape-distortion heatmap over the picture
   bool outlines = true;
   bool panel = true;
   std::string message;  ///< the latest problem to show in the panel (a bad file, a failed solve)
@@ -114,8 +168,12 @@ class Viewer {
   void replace_region(size_t index, const std::optional<Region>& region, const char* what,
                       const char* done);
   void restart_solver();
-  const WarpMap* warp_map();
-  void measure();
+  // The pane (0 left, 1 right while split) at window point `at`, and `at` in the left pane's
+  // window coordinates.
+  std::pair<int, Eigen::Vector2d> pane_at(const Eigen::Vector2d& at) const;
+  // Adds the vertex under the pointer, or on a double click closes the polygon into a lens.
+  void polygon_click(bool double_click);
+  const WarpMap* warp_map(int pane = 0);
 
   Image image_;
   std::string image_path_;
@@ -137,6 +195,18 @@ class Viewer {
   std::optional<WarpMap> map_;  // of frame_, built on the first pick
   std::uint64_t map_generation_ = 0;
 
+  // The right half of a split view: its own solver, frame and map.
+  struct Split {
+    std::string method;  // "" while not split
+    std::unique_ptr<LensSolver> solver;
+    SolvedFrame frame;
+    std::uint64_t generation = 0;
+    FrameMeasures measures;
+    std::optional<WarpMap> map;
+    std::uint64_t map_generation = 0;
+  };
+  Split split_;
+  double heat_max_ = 0;
   int window_width_ = 1, window_height_ = 1;
   double view_zoom_ = 1;
   Eigen::Vector2d pan_ = Eigen::Vector2d::Zero();
@@ -144,6 +214,7 @@ class Viewer {
   std::optional<size_t> dragged_;
   Eigen::Vector2d drag_from_ = Eigen::Vector2d::Zero(), drag_peak_ = Eigen::Vector2d::Zero();
   bool panning_ = false;
+  std::optional<std::vector<Eigen::Vector2d>> drawn_;  // the polygon being drawn, source pixels
 };
 
 }  // namespace geolens::view

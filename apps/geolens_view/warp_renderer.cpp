@@ -3,11 +3,10 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
-#include "geolens/source/mip_pyramid.h"
+#include "geolens/source/tiled_source.h"
 
 namespace geolens::view {
 
@@ -17,21 +16,27 @@ namespace {
 const char* const kVertexShader = R"(#version 330 core
 layout(location = 0) in vec2 a_screen;  // the warp's screen position, its frame's pixels
 layout(location = 1) in vec2 a_source;  // source pixels
+layout(location = 2) in vec3 a_heat;    // the heatmap's colour (its pass only)
 uniform vec2 u_origin;
 uniform float u_scale;
 uniform vec2 u_window;
 out vec2 v_source;
+out vec3 v_heat;
 void main() {
   vec2 p = u_origin + a_screen * u_scale;
   gl_Position = vec4(2.0 * p.x / u_window.x - 1.0, 1.0 - 2.0 * p.y / u_window.y, 0.0, 1.0);
   v_source = a_source;
+  v_heat = a_heat;
 }
 )";
 
-// The texture at the source point; circle outlines where the source point is within about a
-// screen pixel of a circle (fwidth: how far the distance changes across one pixel).
+// The texture at the source point (in the heatmap pass, its luminance under the triangle's
+// colour); circle outlines where the source point is within about a screen pixel of a circle
+// (fwidth: how far the distance changes across one pixel).
 const char* const kFragmentShader = R"(#version 330 core
 in vec2 v_source;
+in vec3 v_heat;
+uniform float u_heat;  // the heatmap's opacity; 0: the picture
 uniform sampler2D u_texture;
 uniform vec2 u_size;  // source pixels
 uniform int u_flat;
@@ -46,6 +51,10 @@ void main() {
     return;
   }
   vec4 c = texture(u_texture, v_source / u_size);
+  if (u_heat > 0.0) {
+    float grey = dot(c.rgb, vec3(0.299, 0.587, 0.114));
+    c = vec4(u_heat * v_heat + (1.0 - u_heat) * vec3(grey), 1.0);
+  }
   for (int i = 0; i < u_count; ++i) {
     float d = length(v_source - u_circles[i].xy);
     float e = abs(d - u_circles[i].z) / max(fwidth(d), 1e-6);
@@ -102,45 +111,95 @@ WarpRenderer::WarpRenderer() {
   loc_count_ = glGetUniformLocation(program_, "u_count");
   loc_circles_ = glGetUniformLocation(program_, "u_circles");
   loc_selected_ = glGetUniformLocation(program_, "u_selected");
+  loc_heat_ = glGetUniformLocation(program_, "u_heat");
   glUseProgram(program_);
   glUniform1i(glGetUniformLocation(program_, "u_texture"), 0);
 
-  glGenVertexArrays(1, &vao_);
-  glGenBuffers(1, &vbo_);
-  glGenBuffers(1, &ebo_);
-  glBindVertexArray(vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
-                        reinterpret_cast<const void*>(2 * sizeof(float)));
+  // The picture's vertices: screen, source (4 floats); the heatmap's: the same and its colour
+  // (4 bytes, normalized).
+  constexpr GLsizei kHeatStride = 4 * sizeof(float) + 4;
+  for (Mesh& m : panes_) {
+    glGenVertexArrays(1, &m.vao);
+    glGenBuffers(1, &m.vbo);
+    glGenBuffers(1, &m.ebo);
+    glBindVertexArray(m.vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    glGenVertexArrays(1, &m.heat_vao);
+    glGenBuffers(1, &m.heat_vbo);
+    glBindVertexArray(m.heat_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.heat_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kHeatStride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, kHeatStride,
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_UNSIGNED_BYTE, GL_TRUE, kHeatStride,
+                          reinterpret_cast<const void*>(4 * sizeof(float)));
+  }
   glBindVertexArray(0);
   glGenTextures(1, &texture_);
 }
 
 WarpRenderer::~WarpRenderer() {
   glDeleteTextures(1, &texture_);
-  glDeleteBuffers(1, &ebo_);
-  glDeleteBuffers(1, &vbo_);
-  glDeleteVertexArrays(1, &vao_);
+  for (Mesh& m : panes_) {
+    glDeleteBuffers(1, &m.heat_vbo);
+    glDeleteVertexArrays(1, &m.heat_vao);
+    glDeleteBuffers(1, &m.ebo);
+    glDeleteBuffers(1, &m.vbo);
+    glDeleteVertexArrays(1, &m.vao);
+  }
   glDeleteProgram(program_);
 }
 
 void WarpRenderer::set_image(const Image& image) {
   GLint max_side = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-  image_width_ = image.width;
-  image_height_ = image.height;
-  const Image* upload = &image;
-  std::optional<MipPyramid> pyramid;  // only for an image larger than one texture
-  if (std::max(image.width, image.height) > max_side) {
-    pyramid.emplace(image);
-    int level = 0;
-    while (std::max(pyramid->level_width(level), pyramid->level_height(level)) > max_side) ++level;
-    upload = &pyramid->level(level);
+  const int side = std::min(int(max_side), kMaxTextureSide);
+  const auto fits = [&](int w, int h) {
+    return std::max(w, h) <= side &&
+           size_t(w) * size_t(h) * size_t(image.channels) <= kTextureBytes;
+  };
+  texture_level_ = 0;
+  TexelRegion texels{image.pixels.data(),
+                     size_t(image.width) * size_t(image.channels),
+                     0,
+                     0,
+                     image.width,
+                     image.height,
+                     image.channels,
+                     {}};
+  if (!fits(image.width, image.height)) {
+    // The finest level that fits, made tile by tile through a tiled source over the image (each
+    // level from the one below, in the LRU cache's budget): the pyramid is never held whole.
+    TiledSourceOptions options;
+    options.tile_size = 512;
+    options.downsample_levels = true;
+    const TiledSource tiled(
+        image.width, image.height, image.channels,
+        [&image](const TileRequest& r) {
+          Image tile(r.width, r.height, r.channels);
+          for (int j = 0; j < r.height; ++j)
+            std::copy_n(image.at(r.x, r.y + j), size_t(r.width) * size_t(r.channels),
+                        tile.at(0, j));
+          return tile;
+        },
+        options);
+    texture_level_ = 1;
+    while (!fits(tiled.level_width(texture_level_), tiled.level_height(texture_level_)))
+      ++texture_level_;
+    texels = tiled.fetch(texture_level_, 0, 0, tiled.level_width(texture_level_),
+                         tiled.level_height(texture_level_));
   }
+  texture_width_ = texels.width;
+  texture_height_ = texels.height;
   static constexpr GLenum kFormats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
   static constexpr GLenum kInternal[] = {GL_R8, GL_RG8, GL_RGB8, GL_RGBA8};
   // Grey (+ alpha) shown as grey: the red channel in red, green and blue.
@@ -148,11 +207,13 @@ void WarpRenderer::set_image(const Image& image) {
                                             {GL_RED, GL_RED, GL_RED, GL_GREEN},
                                             {GL_RED, GL_GREEN, GL_BLUE, GL_ONE},
                                             {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA}};
-  const int c = upload->channels - 1;
+  const int c = texels.channels - 1;
   glBindTexture(GL_TEXTURE_2D, texture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GLint(kInternal[c]), upload->width, upload->height, 0, kFormats[c],
-               GL_UNSIGNED_BYTE, upload->pixels.data());
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, GLint(texels.stride / size_t(texels.channels)));
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(kInternal[c]), texels.width, texels.height, 0, kFormats[c],
+               GL_UNSIGNED_BYTE, texels.data);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, kSwizzles[c]);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -161,7 +222,7 @@ void WarpRenderer::set_image(const Image& image) {
   glGenerateMipmap(GL_TEXTURE_2D);
 }
 
-void WarpRenderer::set_mesh(const WarpMesh& mesh) {
+void WarpRenderer::set_mesh(int pane, const WarpMesh& mesh) {
   std::vector<float> vertices(size_t(mesh.source.rows()) * 4);
   for (Eigen::Index v = 0; v < mesh.source.rows(); ++v) {
     float* p = vertices.data() + v * 4;
@@ -173,30 +234,72 @@ void WarpRenderer::set_mesh(const WarpMesh& mesh) {
   std::vector<unsigned> indices(size_t(mesh.F.rows()) * 3);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) indices[size_t(f) * 3 + k] = unsigned(mesh.F(f, k));
-  glBindVertexArray(vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  Mesh& m = panes_.at(size_t(pane));
+  glBindVertexArray(m.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(),
                GL_STREAM_DRAW);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(unsigned)),
                indices.data(), GL_STREAM_DRAW);
   glBindVertexArray(0);
-  index_count_ = int(indices.size());
+  m.index_count = int(indices.size());
+}
+
+void WarpRenderer::set_heat(int pane, const WarpMesh& mesh,
+                            const std::vector<std::array<uint8_t, 3>>& colours) {
+  if (colours.size() != size_t(mesh.F.rows()))
+    throw std::invalid_argument("WarpRenderer::set_heat: " + std::to_string(colours.size()) +
+                                " colours for " + std::to_string(mesh.F.rows()) + " triangles");
+  // Per corner: screen x, y, source x, y as floats, then the colour's 3 bytes and one unused.
+  struct Corner {
+    float screen[2], source[2];
+    uint8_t colour[4];
+  };
+  static_assert(sizeof(Corner) == 4 * sizeof(float) + 4);
+  std::vector<Corner> corners(size_t(mesh.F.rows()) * 3);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index v = mesh.F(f, k);
+      const std::array<uint8_t, 3>& c = colours[size_t(f)];
+      corners[size_t(f) * 3 + size_t(k)] = {{float(mesh.screen(v, 0)), float(mesh.screen(v, 1))},
+                                            {float(mesh.source(v, 0)), float(mesh.source(v, 1))},
+                                            {c[0], c[1], c[2], 255}};
+    }
+  Mesh& m = panes_.at(size_t(pane));
+  glBindBuffer(GL_ARRAY_BUFFER, m.heat_vbo);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(Corner)), corners.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  m.heat_count = int(corners.size());
+}
+
+void WarpRenderer::clear(int width, int height) const {
+  glViewport(0, 0, width, height);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(0.16f, 0.16f, 0.17f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
 }
 
 void WarpRenderer::draw(const DrawSettings& s) const {
+  const Mesh& m = panes_.at(size_t(s.pane));
+  if (m.index_count == 0) return;
   glViewport(0, 0, s.window_width, s.window_height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glClearColor(0.16f, 0.16f, 0.17f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  if (index_count_ == 0) return;
+  if (s.clip_width > 0) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(s.clip_x, 0, s.clip_width, s.window_height);
+  }
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_);
   glUniform2f(loc_origin_, float(s.origin.x()), float(s.origin.y()));
   glUniform1f(loc_scale_, float(s.scale));
   glUniform2f(loc_window_, float(s.window_width), float(s.window_height));
-  glUniform2f(loc_size_, float(image_width_), float(image_height_));
+  // The texture's extent in source pixels: its level's texels are 2^level source pixels each
+  // (a level's sides round up, so it may reach past the image).
+  glUniform2f(loc_size_, float(texture_width_ << texture_level_),
+              float(texture_height_ << texture_level_));
   std::vector<float> circles;
   for (const Eigen::Vector3d& c : s.outlines)
     if (circles.size() < 3 * kMaxOutlines)
@@ -207,17 +310,26 @@ void WarpRenderer::draw(const DrawSettings& s) const {
   glUniform1i(loc_flat_, 0);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);
-  glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  if (s.heatmap && m.heat_count > 0) {
+    glUniform1f(loc_heat_, float(s.heat_opacity));
+    glBindVertexArray(m.heat_vao);
+    glDrawArrays(GL_TRIANGLES, 0, m.heat_count);
+  } else {
+    glUniform1f(loc_heat_, 0.0f);
+    glBindVertexArray(m.vao);
+    glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+  }
   if (s.wireframe) {
+    glBindVertexArray(m.vao);
     glUniform1i(loc_flat_, 1);
     glUniform4f(loc_colour_, 0.1f, 0.9f, 0.9f, 0.45f);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
   glBindVertexArray(0);
   glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace geolens::view

@@ -50,8 +50,22 @@ Window::Window(int width, int height, const std::string& title, bool vsync) {
       return;
     const bool pressed = action == GLFW_PRESS;
     if (pressed && ImGui::GetIO().WantCaptureMouse) return;
+    Modifiers mods = self.modifiers();
+    if (pressed && button == GLFW_MOUSE_BUTTON_LEFT) {
+      // GLFW has no double click: ImGui's own thresholds (time, distance) make one.
+      const ImGuiIO& io = ImGui::GetIO();
+      Eigen::Vector2d at;
+      glfwGetCursorPos(w, &at.x(), &at.y());
+      const double now = glfwGetTime();
+      mods.double_click = self.left_pressed_at_ >= 0 &&
+                          now - self.left_pressed_at_ < io.MouseDoubleClickTime &&
+                          (at - self.left_pressed_where_).norm() < io.MouseDoubleClickMaxDist;
+      // A third press starts a new pair.
+      self.left_pressed_at_ = mods.double_click ? -1 : now;
+      self.left_pressed_where_ = at;
+    }
     self.input_->mouse_button(button == GLFW_MOUSE_BUTTON_LEFT ? Button::kLeft : Button::kRight,
-                              pressed, self.modifiers());
+                              pressed, mods);
   });
   glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
     Window& self = of(w);
@@ -63,6 +77,9 @@ Window::Window(int width, int height, const std::string& title, bool vsync) {
     if (key == GLFW_KEY_DELETE || key == GLFW_KEY_BACKSPACE) self.input_->key(Key::kDelete);
     if (key == GLFW_KEY_F) self.input_->key(Key::kFit);
     if (key == GLFW_KEY_W) self.input_->key(Key::kWireframe);
+    if (key == GLFW_KEY_H) self.input_->key(Key::kHeatmap);
+    if (key == GLFW_KEY_P) self.input_->key(Key::kPolygon);
+    if (key == GLFW_KEY_ESCAPE) self.input_->key(Key::kEscape);
   });
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     Window& self = of(w);

@@ -20,7 +20,7 @@ struct WindowError : std::runtime_error {
 };
 
 /// Keys the viewer acts on.
-enum class Key { kDelete, kFit, kWireframe };
+enum class Key { kDelete, kFit, kWireframe, kHeatmap, kPolygon, kEscape };
 
 /// What the window reports, in framebuffer pixels (origin top-left, y down). Events ImGui takes
 /// (the pointer over the panel, typing in a field) are not reported, except button releases.
@@ -69,6 +69,10 @@ class Window {
   static std::string last_error_;  // GLFW reports errors to a free function: kept here
   GLFWwindow* window_ = nullptr;
   WindowInput* input_ = nullptr;
+  // The last left press, seconds (glfwGetTime) and screen pixels: a double click is a second
+  // press soon after and near it.
+  double left_pressed_at_ = -1;
+  Eigen::Vector2d left_pressed_where_ = Eigen::Vector2d::Zero();
 };
 
 }  // namespace geolens::view

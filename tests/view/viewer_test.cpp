@@ -6,14 +6,17 @@
 #include <sys/wait.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "geolens/geometry/polygon.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
 #include "support/scratch_folder.h"
 
@@ -24,9 +27,17 @@ namespace fs = std::filesystem;
 
 constexpr int kWidth = 320, kHeight = 240;  // the image, and the window: one window pixel each
 
+// The text of a file.
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 struct ViewRun {
   int code = -1;
-  std::string err;
+  std::string out, err;
 };
 
 class View : public testing::ScratchFolderTest {
@@ -49,7 +60,7 @@ class View : public testing::ScratchFolderTest {
     source_ = image;
   }
 
-  // Runs `prefix` geolens-view `arguments`, stdout dropped, stderr kept; prefix xvfb-run by
+  // Runs `prefix` geolens-view `arguments`, stdout and stderr kept; prefix xvfb-run by
   // default (a display of its own per run, so tests may run in parallel).
   ViewRun run(const std::string& arguments,
               const std::string& prefix = "xvfb-run -a -s \"-screen 0 1280x1024x24\" ") const {
@@ -59,8 +70,8 @@ class View : public testing::ScratchFolderTest {
     const char* asan = std::getenv("ASAN_OPTIONS");
     const std::string env =
         asan ? "ASAN_OPTIONS='" + std::string(asan) + ":detect_leaks=0' " : std::string();
-    const std::string command =
-        env + prefix + GEOLENS_VIEW + " " + arguments + " > /dev/null 2> " + path("stderr.txt");
+    const std::string command = env + prefix + GEOLENS_VIEW + " " + arguments + " > " +
+                                path("stdout.txt") + " 2> " + path("stderr.txt");
     // xvfb-run itself sometimes fails to remove its temporary folder after the program has exited
     // (seen under the sanitizer build with two tests at once): it then says so and exits 5,
     // whatever the program's code. That run is repeated; the viewer's own codes are 0 - 3.
@@ -70,10 +81,8 @@ class View : public testing::ScratchFolderTest {
     for (int attempt = 0; attempt < 3; ++attempt) {
       const int status = std::system(command.c_str());
       r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      std::ifstream in(path("stderr.txt"));
-      std::stringstream s;
-      s << in.rdbuf();
-      r.err = s.str();
+      r.out = read_text(path("stdout.txt"));
+      r.err = read_text(path("stderr.txt"));
       if (!(r.code == 5 && r.err.find(kCleanupError) != std::string::npos)) break;
     }
     return r;
@@ -187,6 +196,186 @@ TEST_F(View, TheMouseDragsZoomsAddsAndRemovesLenses) {
                              "mouse 100 120\npress left\nrelease left\n"
                              "key delete\n");
   EXPECT_LT(mean_difference(removed, source_), 1.0);
+}
+
+TEST_F(View, APolygonDrawnWithTheMouseIsOutlinedThenCancelledByEscape) {
+  // Three vertices clicked, the pointer further on: the outline (drawn with the UI, so in a
+  // "panel" screenshot even with the panel off) crosses the picture; Escape removes it, and no
+  // lens was made.
+  std::ofstream(path("draw.txt")) << "set outlines off\nset panel off\nkey polygon\n"
+                                     "mouse 60 60\npress left\nrelease left\n"
+                                     "mouse 260 60\npress left\nrelease left\n"
+                                     "mouse 260 180\npress left\nrelease left\n"
+                                     "mouse 60 180\n"
+                                  << "screenshot " << path("drawing.png") << " panel\n"
+                                  << "frame 1 key escape\n"
+                                  << "screenshot " << path("cancelled.png") << " panel\nquit\n";
+  const ViewRun r = run(path("in.png") + " --size 320x240 --script " + path("draw.txt"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image drawing = load_image(path("drawing.png"));
+  const Image cancelled = load_image(path("cancelled.png"));
+  EXPECT_LT(mean_difference(cancelled, source_), 1.0);
+  // Along the top edge (y = 60) and the edge on to the pointer (x = 260 .. 60 at y = 180).
+  EXPECT_GT(mean_difference(drawing, source_, 80, 57, 240, 64), 40.0);
+  EXPECT_GT(mean_difference(drawing, source_, 80, 177, 240, 184), 40.0);
+  // Away from the edges nothing is drawn.
+  EXPECT_LT(mean_difference(drawing, source_, 100, 90, 220, 150), 0.5);
+}
+
+TEST_F(View, APolygonDrawnByScriptIsMagnifiedAndExportedAsAPolygonLens) {
+  // Window pixels are source pixels here.
+  const Image drawn =
+      shot("drawn.png", "",
+           "polygon 130 90 200 100 190 160 120 150\nexport " + path("lenses.txt") + "\n");
+  EXPECT_GT(mean_difference(drawn, source_, 120, 90, 200, 160), 10.0);
+  const std::string arguments = read_text(path("lenses.txt"));
+  const std::string polygon = path("lenses-lens-1.txt");
+  EXPECT_NE(arguments.find("--lens polygon:" + polygon + ":2"), std::string::npos) << arguments;
+  const std::vector<Eigen::Vector2d> vertices = read_polygon_file(polygon);
+  ASSERT_EQ(vertices.size(), 4u);
+  const double clicked[4][2] = {{130, 90}, {200, 100}, {190, 160}, {120, 150}};
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(vertices[i].x(), clicked[i][0], 0.01) << i;
+    EXPECT_NEAR(vertices[i].y(), clicked[i][1], 0.01) << i;
+  }
+  // The exported arguments reproduce the view.
+  std::string line = arguments.substr(0, arguments.find('\n'));
+  EXPECT_LT(mean_difference(shot("again.png", line), drawn), 1.0);
+}
+
+TEST_F(View, TheHeatmapColoursShapeDistortionWithTheColoursOfCompare) {
+  const std::string lens = "--lens circle:160,120,24:2.5 ";
+  const Image heat = shot("heat.png", lens, "set heatmap on\n");
+  // Every pixel as heatmap() (heatmap.h) draws a distortion of 0: 0.75 x heat_colour(0) over
+  // the luminance.
+  Image zero(kWidth, kHeight, 3);
+  const std::array<uint8_t, 3> blue = heat_colour(0);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const uint8_t* p = source_.at(x, y);
+      const double grey = 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+      for (int c = 0; c < 3; ++c)
+        zero.at(x, y)[c] = uint8_t(std::lround(0.75 * blue[c] + 0.25 * grey));
+    }
+  // Beyond the footprint (x < 40, x >= 280) the warp is the identity, distortion 0; within it,
+  // around the focus, the context is distorted: other colours.
+  EXPECT_LT(mean_difference(heat, zero, 0, 0, 30, kHeight), 1.5);
+  EXPECT_LT(mean_difference(heat, zero, 290, 0, kWidth, kHeight), 1.5);
+  EXPECT_GT(mean_difference(heat, zero, 80, 60, 240, 180), 15.0);
+  // Off again: the picture.
+  const Image off = shot("off.png", lens, "key heatmap\nkey heatmap\n");
+  EXPECT_LT(mean_difference(off, shot("plain.png", lens)), 0.5);
+}
+
+TEST_F(View, TheSplitViewShowsBothMethodsOnTheSameLenses) {
+  // A window twice the image's width: each half shows the image one window pixel per source
+  // pixel, the left through the geometric lens, the right through the fisheye lens.
+  const std::string lens = " --lens circle:160,120,24:2.5";
+  std::ofstream(path("split.txt"))
+      << "set outlines off\nscreenshot " << path("split.png") << "\nquit\n";
+  const ViewRun r =
+      run(path("in.png") + " --size 640x240 --split fisheye --script " + path("split.txt") + lens);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image split = load_image(path("split.png"));
+  ASSERT_EQ(split.width, 2 * kWidth);
+  Image left(kWidth, kHeight, 3), right(kWidth, kHeight, 3);
+  for (int y = 0; y < kHeight; ++y) {
+    std::copy_n(split.at(0, y), kWidth * 3, left.at(0, y));
+    std::copy_n(split.at(kWidth, y), kWidth * 3, right.at(0, y));
+  }
+  // The halves differ where the lens is, not far from it; each is its method alone.
+  EXPECT_GT(mean_difference(left, right, 100, 60, 220, 180), 2.0);
+  EXPECT_LT(mean_difference(left, right, 0, 0, 30, kHeight), 0.5);
+  EXPECT_LT(mean_difference(left, shot("geometric.png", lens)), 0.5);
+  EXPECT_LT(mean_difference(right, shot("fisheye.png", lens + " --method fisheye")), 0.5);
+}
+
+TEST_F(View, StatsReportTheStagesTheLibraryTimed) {
+  const std::string arguments = path("in.png") + " --size 320x240 --stats --frames 2 " +
+                                "--lens circle:160,120,24:2.5 --screenshot " + path("s.png");
+  const ViewRun geometric = run(arguments + " --model lift");
+  ASSERT_EQ(geometric.code, 0) << geometric.err;
+  double solve = 0, lift = 0, texture = 0, factorize = 0, iterate = 0, total = 0;
+  int solves = 0;
+  const size_t at = geometric.out.find("solve (last) ");
+  ASSERT_NE(at, std::string::npos) << geometric.out;
+  ASSERT_EQ(std::sscanf(geometric.out.c_str() + at, "solve (last) %lf", &solve), 1);
+  const size_t stages = geometric.out.find("stages of the last solve");
+  ASSERT_NE(stages, std::string::npos) << geometric.out;
+  ASSERT_EQ(std::sscanf(geometric.out.c_str() + stages,
+                        "stages of the last solve (calibration solves: %d): lift %lf ms, texture "
+                        "%lf ms, factorize %lf ms, iterate %lf ms, total %lf ms",
+                        &solves, &lift, &texture, &factorize, &iterate, &total),
+            6)
+      << geometric.out;
+  // The lift model calibrates its heights: several solves, each with every stage; the stages
+  // are parts of the total, which is part of the solve the worker timed.
+  EXPECT_GE(solves, 1);
+  EXPECT_GT(iterate, 0);
+  EXPECT_GT(total, 0);
+  EXPECT_LE(lift + texture + factorize + iterate, total * 1.001 + 0.01);
+  EXPECT_LE(total, solve * 1.001 + 0.01);
+  // An image that fits is uploaded whole.
+  EXPECT_NE(geometric.out.find("texture: level 0 of the image, 320 x 240 texels"),
+            std::string::npos)
+      << geometric.out;
+  // A classic lens has no stages, and none are made up for it.
+  const ViewRun classic = run(arguments + " --method fisheye");
+  ASSERT_EQ(classic.code, 0) << classic.err;
+  EXPECT_NE(classic.out.find("stages: none (fisheye)"), std::string::npos) << classic.out;
+}
+
+TEST_F(View, AnImageOf16384By16384PixelsOpensAndIsMagnified) {
+  // Grey squares of 1024 source pixels, 50 and 200: 32 window pixels each in a 512 x 512 window.
+  constexpr int kSide = 16384, kSquare = 1024, kWindow = 512;
+  const auto square = [&](double x, double y) {
+    return (int(x) / kSquare + int(y) / kSquare) % 2 == 0 ? 200 : 50;
+  };
+  {
+    Image big(kSide, kSide, 1);
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x) big.at(x, y)[0] = uint8_t(square(x, y));
+    save_image(path("big.png"), big);
+  }
+  // A zoom-2.5 lens of radius 1024 at the centre.
+  const ViewRun r = run(path("big.png") + " --size 512x512 --lens circle:8192,8192,1024:2.5 " +
+                        "--stats --screenshot " + path("big_shot.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Not the whole image on the GPU: the finest level of its pyramid within 8192 texels a side.
+  EXPECT_NE(r.out.find("texture: level 1 of the image, 8192 x 8192 texels"), std::string::npos)
+      << r.out;
+  const Image shot = load_image(path("big_shot.png"));
+  ASSERT_EQ(shot.width, kWindow);
+  // Window pixel (i, j) shows source ((i, j) + 0.5) x 32 beyond the lens, and at 1 / 2.5 of its
+  // distance from the centre within the focus (radius 1024 x 2.5 = 2560 source pixels shown,
+  // 80 window pixels). Pixels near a square's edge there are skipped.
+  const double per_pixel = double(kSide) / kWindow, centre = kWindow / 2.0;
+  int checked_out = 0, checked_in = 0;
+  for (int j = 0; j < kWindow; j += 3)
+    for (int i = 0; i < kWindow; i += 3) {
+      const double dx = i + 0.5 - centre, dy = j + 0.5 - centre, d = std::hypot(dx, dy);
+      double x = 0, y = 0;
+      if (d > 200) {  // beyond the footprint (2 x 2.5 x 1024 source pixels = 160 window pixels)
+        x = (i + 0.5) * per_pixel;
+        y = (j + 0.5) * per_pixel;
+        ++checked_out;
+      } else if (d < 70) {
+        x = kSide / 2.0 + dx * per_pixel / 2.5;
+        y = kSide / 2.0 + dy * per_pixel / 2.5;
+        ++checked_in;
+      } else {
+        continue;
+      }
+      const double margin = 2 * per_pixel / (d < 70 ? 2.5 : 1);  // two window pixels
+      const auto near_edge = [&](double v) {
+        const double m = std::fmod(v, kSquare);
+        return m < margin || m > kSquare - margin;
+      };
+      if (near_edge(x) || near_edge(y)) continue;
+      EXPECT_NEAR(shot.at(i, j)[0], square(x, y), 4) << i << ", " << j;
+    }
+  EXPECT_GT(checked_out, 1000);
+  EXPECT_GT(checked_in, 100);
 }
 
 TEST_F(View, SwitchingToAClassicLensChangesThePicture) {
