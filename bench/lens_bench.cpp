@@ -104,23 +104,26 @@ namespace {
 // to the 0.1 % tolerance, zoom checked. A fixed 3 x 74 frames, so the mean covers whole drags:
 // every window rebuild of the flattening's factorization and every jump back.
 // The last argument picks the model: 0 the auto model (the lift for a circle, the field for a
-// polygon; the default before issue 13), 1 the focus model (the default since).
+// polygon; the default before issue 13), 1 the focus model (the default since), 2 the focus
+// model's drafts (what LensWorker shows while a lens is dragged).
 LensModel model_argument(const benchmark::State& state, int index) {
   return state.range(index) ? LensModel::kFocus : LensModel::kAuto;
 }
+bool draft_argument(const benchmark::State& state, int index) { return state.range(index) == 2; }
 
 void BM_UpdateMoved(benchmark::State& state) {
   LensOptions o;
   o.model = model_argument(state, 2);
   o.mesh = int(state.range(0));
   const double step = double(state.range(1));
+  const bool draft = draft_argument(state, 2);
   LensSession lens(1024, 1024, o);
   double x = 400;
   lens.update({Lens{Region::circle({x, 512}, 150)}});
   int solves = 0, iterations = 0;
   for (auto _ : state) {
     x = x + step > 620 ? 400 : x + step;
-    const LensResult r = lens.update({Lens{Region::circle({x, 512}, 150)}});
+    const LensResult r = lens.update({Lens{Region::circle({x, 512}, 150)}}, {}, draft);
     solves += r.solves;
     iterations += r.flattening.iterations;
   }
@@ -144,12 +147,13 @@ void BM_UpdateMovedStar(benchmark::State& state) {
     }
     return Region::polygon(p);
   };
+  const bool draft = draft_argument(state, 1);
   double x = 400;
-  lens.update({Lens{star(x), 2.5}});
+  lens.update({Lens{star(x), 2.5}}, {}, draft);
   int iterations = 0;
   for (auto _ : state) {
     x = x + 3 > 620 ? 400 : x + 3;
-    iterations += lens.update({Lens{star(x), 2.5}}).flattening.iterations;
+    iterations += lens.update({Lens{star(x), 2.5}}, {}, draft).flattening.iterations;
   }
   state.counters["iterations/update"] =
       benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
@@ -167,11 +171,11 @@ void BM_UpdateFirst(benchmark::State& state) {
 }
 
 BENCHMARK(BM_UpdateMoved)
-    ->ArgsProduct({{100, 200}, {3, 10}, {0, 1}})
+    ->ArgsProduct({{100, 200}, {3, 10}, {0, 1, 2}})
     ->Iterations(222)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UpdateMovedStar)
-    ->ArgsProduct({{100, 200}, {0, 1}})
+    ->ArgsProduct({{100, 200}, {0, 1, 2}})
     ->Iterations(222)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UpdateFirst)->ArgsProduct({{100, 200}, {0, 1}})->Unit(benchmark::kMillisecond);

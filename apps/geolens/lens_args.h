@@ -18,13 +18,13 @@ struct LensArgs {
   double zoom = 2.0;
   std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
               model = "focus", boundary = "sliding", extent = "global";
-  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5, footprint = 0;
+  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5, footprint = 0, mesh_tolerance = 0.2;
   int mesh = 100, max_iterations = 100, subdivide = 0, threads = 0;
 };
 
-/// Registers --lens (required), --zoom, --model, --footprint, --profile, --mesh, --subdivide,
-/// --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor, --tolerance,
-/// --max-iterations and --threads on `command`.
+/// Registers --lens (required), --zoom, --model, --footprint, --profile, --mesh, --mesh-tolerance,
+/// --subdivide, --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor,
+/// --tolerance, --max-iterations and --threads on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
 
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.

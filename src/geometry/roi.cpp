@@ -37,6 +37,7 @@ Region Region::circle(const Eigen::Vector2d& center, double radius) {
 
 std::string Region::kind() const { return shape_->kind(); }
 std::optional<Circle> Region::circle() const { return shape_->circle(); }
+std::optional<std::vector<Eigen::Vector2d>> Region::outline() const { return shape_->outline(); }
 Eigen::AlignedBox2d Region::bounds() const { return shape_->bounds(); }
 Eigen::Vector2d Region::peak() const { return shape_->peak(); }
 double Region::size() const { return shape_->size(); }

@@ -16,6 +16,7 @@ struct FieldShape final : RegionShape {
   double largest_reach = 0;
   std::vector<Eigen::Vector2d> anchor_points;
   std::optional<Circle> as_circle;
+  std::optional<std::vector<Eigen::Vector2d>> as_polygon;
   std::function<double(const Eigen::Vector2d&)> depth_at, thickness_at, distance_at;
 
   std::string kind() const override { return name; }
@@ -28,6 +29,7 @@ struct FieldShape final : RegionShape {
   double distance(const Eigen::Vector2d& p) const override { return distance_at(p); }
   std::vector<Eigen::Vector2d> anchors() const override { return anchor_points; }
   std::optional<Circle> circle() const override { return as_circle; }
+  std::optional<std::vector<Eigen::Vector2d>> outline() const override { return as_polygon; }
 };
 
 }  // namespace geolens

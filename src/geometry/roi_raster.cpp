@@ -69,6 +69,7 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
   shape->name = "polygon";
   shape->box = box;
   shape->anchor_points = vertices;
+  shape->as_polygon = vertices;
   shape->depth_at = [field](const Eigen::Vector2d& p) {
     return depth_from_distances(field->raster.axis_distance(p), field->boundary_distance(p));
   };

@@ -4,12 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/measure/distortion.h"
 #include "lens/zoom_match.h"
@@ -82,114 +82,6 @@ double classic_source_distance(ClassicLens lens, double u, double zoom, double a
 }
 
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-// Twice the signed area of triangle f of (V, F).
-double signed_area2(const std::vector<Eigen::Vector2d>& V, const std::array<int, 3>& f) {
-  return cross(V[size_t(f[1])] - V[size_t(f[0])], V[size_t(f[2])] - V[size_t(f[0])]);
-}
-
-// The point where segment a -> b crosses the circle (c, radius), for a and b on opposite sides:
-// the root in [0, 1] of |a + s (b - a) - c|^2 = radius^2.
-Eigen::Vector2d circle_crossing(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                const Ring& ring) {
-  const Eigen::Vector2d d = b - a, w = a - ring.center;
-  const double A = d.squaredNorm(), B = 2 * w.dot(d),
-               C = w.squaredNorm() - ring.radius * ring.radius;
-  const double root = std::sqrt(std::max(0.0, B * B - 4 * A * C));
-  // a inside (C < 0): the larger root; a outside: the smaller one.
-  const double s = C < 0 ? (-B + root) / (2 * A) : (-B - root) / (2 * A);
-  return a + std::clamp(s, 0.0, 1.0) * d;
-}
-
-// Moves free vertices within `reach` of the ring onto it, unless that would shrink an incident
-// triangle below a fifth of its area; marks them locked.
-void snap_to_ring(std::vector<Eigen::Vector2d>& V, const std::vector<std::array<int, 3>>& F,
-                  std::vector<char>& locked, const Ring& ring, double reach) {
-  std::vector<std::vector<int>> incident(V.size());
-  for (size_t f = 0; f < F.size(); ++f)
-    for (int k : F[f]) incident[size_t(k)].push_back(int(f));
-  for (size_t i = 0; i < V.size(); ++i) {
-    const Eigen::Vector2d offset = V[i] - ring.center;
-    const double distance = offset.norm();
-    if (locked[i] || distance == 0 || std::abs(distance - ring.radius) >= reach) continue;
-    const Eigen::Vector2d old = V[i];
-    std::vector<double> before;
-    for (int f : incident[i]) before.push_back(signed_area2(V, F[size_t(f)]));
-    V[i] = ring.center + offset * (ring.radius / distance);
-    bool keeps_shape = true;
-    for (size_t k = 0; k < incident[i].size(); ++k)
-      keeps_shape = keeps_shape && signed_area2(V, F[size_t(incident[i][k])]) > 0.2 * before[k];
-    if (keeps_shape) {
-      locked[i] = 1;
-    } else {
-      V[i] = old;
-    }
-  }
-}
-
-// Splits every triangle the ring crosses along it; new vertices are locked.
-void split_along_ring(std::vector<Eigen::Vector2d>& V, std::vector<std::array<int, 3>>& F,
-                      std::vector<char>& locked, const Ring& ring) {
-  const double tolerance = 1e-9 * ring.radius;
-  auto side = [&](int i) {
-    const double f = (V[size_t(i)] - ring.center).norm() - ring.radius;
-    return f > tolerance ? 1 : f < -tolerance ? -1 : 0;
-  };
-  std::map<std::pair<int, int>, int> crossing;
-  auto crossing_vertex = [&](int i, int j) {
-    const std::pair<int, int> key = std::minmax(i, j);
-    auto [it, inserted] = crossing.try_emplace(key, int(V.size()));
-    if (inserted) {
-      V.push_back(circle_crossing(V[size_t(key.first)], V[size_t(key.second)], ring));
-      locked.push_back(1);
-    }
-    return it->second;
-  };
-  std::vector<std::array<int, 3>> out;
-  out.reserve(F.size() + F.size() / 8);
-  for (const std::array<int, 3>& t : F) {
-    const std::array<int, 3> s = {side(t[0]), side(t[1]), side(t[2])};
-    const bool crossed = (s[0] < 0 || s[1] < 0 || s[2] < 0) && (s[0] > 0 || s[1] > 0 || s[2] > 0);
-    if (!crossed) {
-      out.push_back(t);
-      continue;
-    }
-    // Rotate so that corner 0 is the one on the ring (one vertex on it) or the one alone on its
-    // side (none on it); rotation keeps the orientation.
-    int first = 0;
-    const int zeros = int(s[0] == 0) + int(s[1] == 0) + int(s[2] == 0);
-    for (int k = 0; k < 3; ++k) {
-      const bool on_ring = s[size_t(k)] == 0;
-      const bool alone =
-          s[size_t(k)] != s[size_t((k + 1) % 3)] && s[size_t(k)] != s[size_t((k + 2) % 3)];
-      if (zeros == 1 ? on_ring : alone) first = k;
-    }
-    const int i0 = t[size_t(first)], i1 = t[size_t((first + 1) % 3)],
-              i2 = t[size_t((first + 2) % 3)];
-    if (zeros == 1) {
-      const int p = crossing_vertex(i1, i2);
-      out.push_back({i0, i1, p});
-      out.push_back({i0, p, i2});
-      continue;
-    }
-    const int p = crossing_vertex(i0, i1), q = crossing_vertex(i0, i2);
-    out.push_back({i0, p, q});
-    // The quad p, i1, i2, q: split along its shorter diagonal.
-    if ((V[size_t(p)] - V[size_t(i2)]).squaredNorm() <=
-        (V[size_t(i1)] - V[size_t(q)]).squaredNorm()) {
-      out.push_back({p, i1, i2});
-      out.push_back({p, i2, q});
-    } else {
-      out.push_back({p, i1, q});
-      out.push_back({i1, i2, q});
-    }
-  }
-  F = std::move(out);
-}
 
 void validate_lenses(const std::vector<CircleLens>& lenses, double width, double height,
                      const char* function) {
@@ -286,31 +178,9 @@ PlanarMesh ringed_grid(double width, double height, int vertices_long_side,
     require(ring.center.allFinite() && std::isfinite(ring.radius) && ring.radius > 0, "ringed_grid",
             "ring centre must be finite and radius > 0");
   const Grid grid = make_grid(width, height, vertices_long_side);
-  std::vector<Eigen::Vector2d> V(size_t(grid.V.rows()));
-  std::vector<char> locked(V.size());
-  for (size_t i = 0; i < V.size(); ++i) {
-    V[i] = grid.V.row(Eigen::Index(i)).transpose();
-    locked[i] = grid.sides[i] != 0;
-  }
-  std::vector<std::array<int, 3>> F(size_t(grid.F.rows()));
-  for (size_t f = 0; f < F.size(); ++f)
-    F[f] = {grid.F(Eigen::Index(f), 0), grid.F(Eigen::Index(f), 1), grid.F(Eigen::Index(f), 2)};
-  for (const Ring& ring : rings) {
-    snap_to_ring(V, F, locked, ring, 0.2 * grid.cell);
-    split_along_ring(V, F, locked, ring);
-  }
-  PlanarMesh mesh;
-  mesh.V.resize(Eigen::Index(V.size()), 2);
-  mesh.sides.assign(V.size(), 0);
-  for (size_t i = 0; i < V.size(); ++i) {
-    mesh.V.row(Eigen::Index(i)) = V[i].transpose();
-    const Eigen::Vector2d& p = V[i];
-    mesh.sides[i] = uint8_t((p.x() == 0 ? kLeft : 0) | (p.x() == width ? kRight : 0) |
-                            (p.y() == 0 ? kTop : 0) | (p.y() == height ? kBottom : 0));
-  }
-  mesh.F.resize(Eigen::Index(F.size()), 3);
-  for (size_t f = 0; f < F.size(); ++f) mesh.F.row(Eigen::Index(f)) << F[f][0], F[f][1], F[f][2];
-  return mesh;
+  std::vector<MeshCurve> curves;
+  for (const Ring& ring : rings) curves.push_back(circle_curve(ring.center, ring.radius));
+  return conform_mesh(grid, curves, 0.2 * grid.cell);
 }
 
 WarpMesh classic_warp(ClassicLens kind, const std::vector<CircleLens>& lenses, double width,

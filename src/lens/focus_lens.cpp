@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
 #include "geolens/lens/texture_map.h"
+#include "numerics/bracketed_root.h"
 
 namespace geolens {
 
@@ -42,6 +46,37 @@ double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
   return d;
 }
 
+// A convex corner of a polygon region: the outward unit normals of its two edges.
+struct Miter {
+  Eigen::Vector2d corner, n1, n2;
+};
+
+// The convex corners of a region's outline (none for other regions).
+std::vector<Miter> miters(const Region& region) {
+  std::vector<Miter> out;
+  const std::optional<std::vector<Eigen::Vector2d>> outline = region.outline();
+  if (!outline) return out;
+  const std::vector<Eigen::Vector2d>& v = *outline;
+  const size_t n = v.size();
+  double area2 = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d &a = v[k], &b = v[(k + 1) % n];
+    area2 += a.x() * b.y() - a.y() * b.x();
+  }
+  const double turn = area2 > 0 ? 1 : -1;  // the sign of a convex corner's turn
+  auto normal = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const Eigen::Vector2d d = (b - a).normalized();
+    return Eigen::Vector2d(turn * d.y(), -turn * d.x());
+  };
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d &a = v[(k + n - 1) % n], &c = v[k], &b = v[(k + 1) % n];
+    const Eigen::Vector2d e1 = c - a, e2 = b - c;
+    if (turn * (e1.x() * e2.y() - e1.y() * e2.x()) > 0)
+      out.push_back({c, normal(a, c), normal(c, b)});
+  }
+  return out;
+}
+
 // One focus group's ring about `centre` (the group's, or a point on the image side its regions
 // cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
 // smooth envelope of the farthest point within `near` of a region) and the footprint's edge
@@ -51,7 +86,28 @@ struct Ring {
   static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
   Eigen::Vector2d centre, disk_centre;
   double disk_radius, ratio, near, cell, width, height, margin = 0;
-  std::vector<double> inner_;  // per bin, or one value for a circle about its centre
+  std::vector<double> inner_;               // per bin, or one value for a circle about its centre
+  std::vector<std::vector<Miter>> miters_;  // per lens of the group
+
+  // The distance from p to the group's regions as the ring reads it: the Euclidean one, but
+  // where the nearest point is a convex corner of a polygon, the larger of the distances to its
+  // two edges' lines. So the ring has a crease along the corner's bisector instead of a cone
+  // at the corner, which the mesh's triangles there average without folding (a triangle that
+  // spans a wide angle as seen from a cone's apex folds under its linear average).
+  double distance(const FocusGroup& group, const std::vector<Lens>& lenses,
+                  const Eigen::Vector2d& p) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < group.lenses.size(); ++k) {
+      double d = lenses[group.lenses[k]].region.distance(p);
+      for (const Miter& m : miters_[k]) {
+        if ((p - m.corner).squaredNorm() > d * d * (1 + 1e-9)) continue;
+        d = std::max(m.n1.dot(p - m.corner), m.n2.dot(p - m.corner));
+        break;
+      }
+      best = std::min(best, d);
+    }
+    return best;
+  }
 
   Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
        double width_, double height_)
@@ -62,6 +118,7 @@ struct Ring {
         cell(cell_),
         width(width_),
         height(height_) {
+    for (size_t k : group.lenses) miters_.push_back(miters(lenses[k].region));
     // A region over an image side is magnified about a point on that side, so the side stays.
     Eigen::AlignedBox2d b;
     for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
@@ -71,16 +128,18 @@ struct Ring {
     if (b.min().y() <= 0) c.y() = 0;
     if (b.max().y() >= height) c.y() = height;
     place_at(c, group, lenses);
+    // (A mesh that follows the regions resolves them: its band is a millionth of a cell.)
     for (size_t k : group.lenses)
-      if (lenses[k].region.size() < 3 * cell) margin = 2 * cell;
+      if (lenses[k].region.size() < 3 * cell && near > 0.5 * cell) margin = 2 * cell;
   }
 
   // The smallest ratio, over the rays into the image, of the footprint's edge, less `margin`,
   // to the focus's extent. The margin is two cells for the mesh to bend in when a region of the
-  // group spans fewer than three cells (below the mesh's resolution, where a ring folds or
-  // shrinks the focus), else 0: a margin of cells made the zoom that fits depend on the mesh (a
-  // circle of radius 100 at 80 px from a side fitted 1.92 at 100 x 100 and 2.0 at 400 x 400); a
-  // mesh too coarse for the ring folds and is caught by unfolding_zooms.
+  // group spans fewer than three cells of a mesh that does not follow it (below the mesh's
+  // resolution, where a ring folds or shrinks the focus), else 0: a margin of cells made the zoom
+  // that fits depend on the mesh (a circle of radius 100 at 80 px from a side fitted 1.92 at 100 x
+  // 100 and 2.0 at 400 x 400); a mesh too coarse for the ring folds and is caught by
+  // unfolding_zooms.
   double min_ratio() const {
     double r = std::numeric_limits<double>::infinity();
     constexpr int kRays = 720;
@@ -134,6 +193,18 @@ struct Ring {
       }
       found[size_t(k)] = std::min(t * (1 + 2 * std::numbers::pi / kBins) + near, reach);
     }
+    // A polygon's corner between two rays (a sharp tip the rays pass by) is as far as both.
+    for (size_t k : group.lenses) {
+      for (const Eigen::Vector2d& v :
+           lenses[k].region.outline().value_or(std::vector<Eigen::Vector2d>{})) {
+        const Eigen::Vector2d w = v - centre;
+        double a = std::atan2(w.y(), w.x()) / (2 * std::numbers::pi) * kBins;
+        if (a < 0) a += kBins;
+        const int below = std::min(int(a), kBins - 1);
+        for (const int bin : {below, (below + 1) % kBins})
+          found[size_t(bin)] = std::max(found[size_t(bin)], std::min(w.norm() + near, reach));
+      }
+    }
     // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
     // from ray to ray that the ring does not shear the mesh's triangles until they fold.
     constexpr double kSlope = 0.3;
@@ -147,6 +218,14 @@ struct Ring {
         inner_[size_t(k)] = std::max(inner_[size_t(k)], found[size_t(j)] * decay[size_t(steps)]);
       }
     }
+  }
+
+  // Whether the image border is too far to round the footprint's edge anywhere (smooth_min):
+  // 1.25 times the group's disk from its centre or more.
+  bool clear_of_border() const {
+    const double room = 1.25 * ((centre - disk_centre).norm() + disk_radius);
+    return centre.x() >= room && centre.y() >= room && width - centre.x() >= room &&
+           height - centre.y() >= room;
   }
 
   double inner(const Eigen::Vector2d& u) const {
@@ -164,12 +243,14 @@ struct Ring {
   // the mesh's triangles until they fold; it is the plain minimum where the three differ by a
   // quarter of the nearest or more, so the footprint of a circle clear of the border is the
   // group's disk, the circle its mesh follows (GeometricLens::base_grid).
-  double edge(const Eigen::Vector2d& u) const {
+  double edge(const Eigen::Vector2d& u) const { return edge(u, inner(u)); }
+  // The same, given inner(u).
+  double edge(const Eigen::Vector2d& u, double inner_u) const {
     const Eigen::Vector2d w = centre - disk_centre;
     const double b = u.dot(w);
     const double disk =
         -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
-    const double outer = std::min(ratio * inner(u), disk);
+    const double outer = std::min(ratio * inner_u, disk);
     const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
     return smooth_min(outer, smooth_min(exits.x(), exits.y()));
   }
@@ -187,8 +268,8 @@ struct Ring {
     p.t = (q - centre).norm();
     p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
     p.inner = inner(p.u);
-    p.edge = edge(p.u);
-    p.s = std::max(p.t, p.inner + std::max(group_distance(group, lenses, q) - near, 0.0));
+    p.edge = edge(p.u, p.inner);
+    p.s = std::max(p.t, p.inner + std::max(distance(group, lenses, q) - near, 0.0));
     return p;
   }
 };
@@ -362,15 +443,71 @@ void apply_ring(Eigen::MatrixX2d& X, const std::vector<Lens>& lenses, const Focu
   });
 }
 
+// Unfolds the start X of mesh (V, F) where its triangles fold though the continuous start does
+// not: near a polygon's corner, where the start has a cone (a point's shift grows with its
+// distance from the corner), a triangle that spans a wide angle as seen from the corner folds
+// under the cone's linear average on a fine mesh. The vertices of folded triangles that are
+// neither in a focus (within `band` of a region) nor unmoved go to the mean of their
+// neighbours, for a few rounds. Returns the folds left.
+int relax_folds(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3i& F,
+                const std::vector<Lens>& lenses, double band) {
+  constexpr int kRounds = 8;
+  auto folded = [&](Eigen::Index f) {
+    const Eigen::Vector2d a = X.row(F(f, 0)), b = X.row(F(f, 1)), c = X.row(F(f, 2));
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0;
+  };
+  for (int round = 0;; ++round) {
+    std::vector<Eigen::Index> moved;
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      if (folded(f))
+        for (int k = 0; k < 3; ++k) moved.push_back(F(f, k));
+    if (moved.empty() || round == kRounds) return int(moved.size() / 3);
+    std::sort(moved.begin(), moved.end());
+    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+    std::erase_if(moved, [&](Eigen::Index i) {
+      if (X.row(i) == V.row(i)) return true;
+      for (const Lens& lens : lenses)
+        if (lens.region.distance(V.row(i).transpose()) <= band) return true;
+      return false;
+    });
+    // The mean of each moved vertex's neighbours (each edge counted once per triangle side).
+    Eigen::MatrixX2d sum = Eigen::MatrixX2d::Zero(Eigen::Index(moved.size()), 2);
+    Eigen::VectorXd count = Eigen::VectorXd::Zero(Eigen::Index(moved.size()));
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const auto at = std::lower_bound(moved.begin(), moved.end(), F(f, k));
+        if (at == moved.end() || *at != F(f, k)) continue;
+        const Eigen::Index j = at - moved.begin();
+        sum.row(j) += X.row(F(f, (k + 1) % 3)) + X.row(F(f, (k + 2) % 3));
+        count(j) += 2;
+      }
+    }
+    for (size_t j = 0; j < moved.size(); ++j)
+      X.row(moved[j]) = sum.row(Eigen::Index(j)) / count(Eigen::Index(j));
+  }
+}
+
 }  // namespace
 
-Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
+    const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups, double cell,
+    double band, double width, double height, ThreadPool& pool) {
+  auto rings = std::make_shared<std::vector<Ring>>();
+  for (const FocusGroup& group : groups)
+    rings->emplace_back(group, lenses, cell, band, width, height);
+  return [rings, lenses, groups, &pool](const Eigen::MatrixX2d& points) {
+    Eigen::MatrixX2d X = points;
+    for (size_t g = 0; g < groups.size(); ++g)
+      apply_ring(X, lenses, groups[g], (*rings)[g], groups[g].log_zoom, pool);
+    return X;
+  };
+}
+
+Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
                              double width, double height, ThreadPool& pool) {
-  Eigen::MatrixX2d X = V;
-  for (const FocusGroup& group : groups)
-    apply_ring(X, lenses, group, Ring(group, lenses, cell, band, width, height), group.log_zoom,
-               pool);
+  Eigen::MatrixX2d X = focus_map(lenses, groups, cell, band, width, height, pool)(mesh.V);
+  relax_folds(X, mesh.V, mesh.F, lenses, band);
   return X;
 }
 
@@ -384,7 +521,7 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
     for (const double fraction : kZoomFractions) {
       Eigen::MatrixX2d X = mesh.V;
       apply_ring(X, lenses, group, ring, fraction * group.log_zoom, pool);
-      if (count_folds(X, mesh.F) > 0) continue;
+      if (relax_folds(X, mesh.V, mesh.F, lenses, band) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
     }
@@ -392,7 +529,7 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
   return zooms;
 }
 
-FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
                             double cell, double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control) {
@@ -400,22 +537,68 @@ FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
   for (const double fraction : kZoomFractions) {
     std::vector<FocusGroup> lowered = groups;
     for (FocusGroup& g : lowered) g.log_zoom *= fraction;
-    const Eigen::MatrixX2d start = focus_start(V, lenses, lowered, cell, band, width, height, pool);
+    const Eigen::MatrixX2d start =
+        focus_start(mesh, lenses, lowered, cell, band, width, height, pool);
     if (!flattener.admissible(start)) continue;
     flattener.admit_anisotropy(start);
     return flattener.solve(start, nullptr, control);
   }
-  return flattener.solve(V, nullptr, control);
+  return flattener.solve(mesh.V, nullptr, control);
 }
 
-bool meshed_along_circles(const std::vector<Lens>& lenses, double cell) {
+bool meshed_along_regions(const std::vector<Lens>& lenses, double cell) {
   return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {
-    return lens.region.circle() && lens.region.size() >= 3 * cell;
+    return (lens.region.circle() && lens.region.size() >= 3 * cell) ||
+           (lens.region.outline() && lens.region.size() >= 1 * cell);
   });
 }
 
 double focus_band(const std::vector<Lens>& lenses, double cell) {
-  return meshed_along_circles(lenses, cell) ? 1e-6 * cell : std::numbers::sqrt2 * cell;
+  return meshed_along_regions(lenses, cell) ? 1e-6 * cell : std::numbers::sqrt2 * cell;
+}
+
+std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell, double band,
+                                    double width, double height) {
+  std::vector<MeshCurve> curves;
+  for (const Lens& lens : lenses) {
+    if (const std::optional<Circle> c = lens.region.circle())
+      curves.push_back(circle_curve(c->center, c->radius));
+    else if (const std::optional<std::vector<Eigen::Vector2d>> p = lens.region.outline())
+      curves.push_back(polygon_curve(*p));
+  }
+  for (const FocusGroup& group : focus_groups(lenses)) {
+    if (group.log_zoom <= 0) continue;  // nothing moves
+    auto ring = std::make_shared<const Ring>(group, lenses, cell, band, width, height);
+    if (ring->inner_.size() == 1 && ring->clear_of_border()) {
+      // A circle about its centre: the footprint's edge is the group's disk.
+      curves.push_back(circle_curve(ring->centre, ring->disk_radius));
+      continue;
+    }
+    // The footprint's edge is where s reaches edge along a ray (Ring::Place); level = s - edge
+    // grows along every ray, so a point is projected onto it by a root on its ray.
+    auto shared_lenses = std::make_shared<const std::vector<Lens>>(lenses);
+    auto level = [ring, shared_lenses, group](const Eigen::Vector2d& p) {
+      // The centre is in the focus (on an image corner, the ray of a point there, along
+      // rounding, may leave the image at once).
+      if ((p - ring->centre).norm() <= 1e-9 * ring->disk_radius)
+        return -ring->inner(Eigen::Vector2d(1, 0));
+      const Ring::Place place = ring->place(p, group, *shared_lenses);
+      return place.s - place.edge;
+    };
+    MeshCurve curve;
+    curve.level = level;
+    curve.project = [ring, level](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d u = (p - ring->centre).normalized();
+      double hi = (p - ring->centre).norm();  // level(0) < 0 <= level(hi), widened
+      while (level(ring->centre + hi * u) < 0) hi *= 2;
+      auto along = [&](double t) { return level(ring->centre + t * u); };
+      return Eigen::Vector2d(ring->centre + bracketed_root(along, 0.0, hi, 1e-9) * u);
+    };
+    const double r = group.reach + group.margin + (ring->centre - group.centre).norm();
+    curve.bounds = Eigen::AlignedBox2d(ring->centre.array() - r, ring->centre.array() + r);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
 }
 
 }  // namespace geolens

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -66,6 +67,8 @@ void validate(const LensOptions& o) {
   require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
   require_mesh_vertices(o.mesh, "validate");
+  require(std::isfinite(o.mesh_tolerance) && o.mesh_tolerance >= 0, "validate",
+          "mesh tolerance must be >= 0, got " + std::to_string(o.mesh_tolerance));
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");
@@ -106,23 +109,26 @@ Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) c
 // The grid the lift is built on: the image's, or one over the solved box whose border carries
 // the sides flags so the flattening pins it; for focus lenses on circles, with vertices on every
 // focus circle and footprint edge.
-Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const {
+Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
+                              bool draft) const {
   box = solved_box(lenses);
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
   if (box.isApprox(image) && model_for(lenses) != LensModel::kFocus) return grid_;
   Grid patch = make_grid(box.sizes().x(), box.sizes().y(), options_.mesh);
-  if (model_for(lenses) == LensModel::kFocus &&
-      meshed_along_circles(lenses, cell_size(box, options_.mesh))) {
-    // Vertices on every focus circle and footprint edge, so no triangle crosses them.
-    std::vector<Ring> rings;
-    for (const Lens& lens : lenses)
-      rings.push_back({lens.region.peak() - box.min(), lens.region.size()});
-    for (const FocusGroup& g : focus_groups(lenses))
-      rings.push_back({g.centre - box.min(), g.reach + g.margin});
-    static_cast<PlanarMesh&>(patch) =
-        ringed_grid(box.sizes().x(), box.sizes().y(), options_.mesh, rings);
-  }
   patch.V.rowwise() += box.min().transpose();
+  const double cell = cell_size(box, options_.mesh);
+  if (model_for(lenses) == LensModel::kFocus && meshed_along_regions(lenses, cell)) {
+    // Vertices on every region's boundary and footprint's edge, so no triangle crosses them,
+    // and smaller triangles where the start bends.
+    const double band = focus_band(lenses, cell);
+    MeshRefinement refine;
+    if (!draft && options_.mesh_tolerance > 0) {
+      refine.map = focus_map(lenses, focus_groups(lenses), cell, band, width_, height_, *pool_);
+      refine.tolerance = options_.mesh_tolerance;
+    }
+    static_cast<PlanarMesh&>(patch) = conform_mesh(
+        patch, focus_curves(lenses, cell, band, width_, height_), 0.4 * patch.cell, refine);
+  }
   return patch;
 }
 
@@ -133,8 +139,53 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
   return LensModel::kLift;
 }
 
+bool GeometricLens::clear_of_border(const std::vector<Lens>& lenses) const {
+  // smooth_min (focus_lens.cpp) rounds the footprint's edge where the border is nearer than
+  // 1.25 times the edge.
+  for (const FocusGroup& g : focus_groups(lenses)) {
+    const double room = 1.25 * (g.reach + g.margin) + 1;
+    if (g.centre.x() < room || g.centre.y() < room || width_ - g.centre.x() < room ||
+        height_ - g.centre.y() < room)
+      return false;
+  }
+  return true;
+}
+
+namespace {
+
+// The translation that takes lenses `from` to `to` (the same shapes, zooms and footprints), if
+// there is one; only circles and polygons are compared (other regions are never equal).
+std::optional<Eigen::Vector2d> translation(const std::vector<Lens>& from,
+                                           const std::vector<Lens>& to) {
+  if (from.empty() || from.size() != to.size()) return std::nullopt;
+  const Eigen::Vector2d shift = to[0].region.peak() - from[0].region.peak();
+  const double tolerance = 1e-9 * (1 + shift.norm());
+  auto moved = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (b - a - shift).norm() <= tolerance * (1 + a.norm());
+  };
+  for (size_t k = 0; k < from.size(); ++k) {
+    const Lens &a = from[k], &b = to[k];
+    if (a.zoom != b.zoom || a.footprint != b.footprint || a.profile != b.profile)
+      return std::nullopt;
+    const std::optional<Circle> ca = a.region.circle(), cb = b.region.circle();
+    const auto pa = a.region.outline(), pb = b.region.outline();
+    if (ca && cb) {
+      if (ca->radius != cb->radius || !moved(ca->center, cb->center)) return std::nullopt;
+    } else if (pa && pb && pa->size() == pb->size()) {
+      for (size_t i = 0; i < pa->size(); ++i)
+        if (!moved((*pa)[i], (*pb)[i])) return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+  }
+  return shift;
+}
+
+}  // namespace
+
 std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::vector<double>& fits,
-                                        Grid& grid, Eigen::AlignedBox2d& box) const {
+                                        Grid& grid, Eigen::AlignedBox2d& box, SolveCache* cache,
+                                        bool draft) const {
   fits.clear();
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   if (model_for(lenses) != LensModel::kFocus) {
@@ -154,10 +205,27 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::ve
     }
   };
   lower(fits);
-  // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding.
-  grid = base_grid(out, box);
+  // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding;
+  // the last frame's mesh, moved, where the lenses only moved clear of the border.
+  MeshMemo* memo = cache ? &cache->mesh : nullptr;
+  const bool clear = clear_of_border(out);
+  if (const std::optional<Eigen::Vector2d> shift =
+          memo && clear ? translation(memo->lenses, out) : std::nullopt) {
+    box = solved_box(out);
+    grid = memo->grid;
+    grid.V.rowwise() += (box.min() - memo->box.min()).transpose();
+    memo->lenses = out;
+    memo->box = box;
+    memo->grid = grid;
+    lower(memo->unfolding);
+    return out;
+  }
+  grid = base_grid(out, box, draft);
   const double out_cell = cell_size(box, options_.mesh);
-  lower(unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_, *pool_));
+  const std::vector<double> unfolding =
+      unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_, *pool_);
+  if (memo) *memo = clear ? MeshMemo{out, box, grid, unfolding} : MeshMemo{};
+  lower(unfolding);
   return out;
 }
 
@@ -318,7 +386,7 @@ LensResult GeometricLens::solve_once(const PlanarMesh& mesh, const Eigen::Aligne
   const bool predicted = cache.predicted.rows() == cache.flat.rows();
   if (r.model == LensModel::kFocus) {
     const double cell = cell_size(box, options_.mesh);
-    r.flattening = flatten_focus(*cache.flattener, r.mesh.V, lenses, focus.groups, cell,
+    r.flattening = flatten_focus(*cache.flattener, r.mesh, lenses, focus.groups, cell,
                                  focus_band(lenses, cell), width_, height_, *pool_, &numbered);
   } else {
     r.flattening =

@@ -9,7 +9,7 @@
 namespace geolens {
 
 struct LensSession::State {
-  SolveCache cache;
+  SolveCache caches[2];         // full frames', drafts'
   Eigen::MatrixX2d change;      // what the last update changed in the flattening (#V x 2, or empty)
   std::vector<Lens> lenses;     // the last update's (fitted) lenses
   std::vector<double> heights;  // and their calibrated heights
@@ -24,12 +24,14 @@ LensSession& LensSession::operator=(LensSession&&) noexcept = default;
 
 void LensSession::reset() { state_ = std::make_unique<State>(); }
 
-LensResult LensSession::update(const std::vector<Lens>& asked, const SolveControl& control) {
+LensResult LensSession::update(const std::vector<Lens>& asked, const SolveControl& control,
+                               bool draft) {
   State& s = *state_;
+  SolveCache& cache = s.caches[draft ? 1 : 0];
   std::vector<double> fits;
   Grid grid;
   Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = lens_.fitted(asked, fits, grid, box);
+  const std::vector<Lens> lenses = lens_.fitted(asked, fits, grid, box, &cache, draft);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const LensModel model = lens_.model_for(lenses);
@@ -44,28 +46,29 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
                 : known        ? s.heights[k]
                                : initial_height(lens, model, grid.cell));
   }
-  Eigen::MatrixX2d before = s.cache.flat;
-  const Eigen::Vector2d box_before = s.cache.box.min();
-  if (s.change.rows() == before.rows()) s.cache.predicted = before + s.change;
+  Eigen::MatrixX2d before = cache.flat;
+  const Eigen::Vector2d box_before = cache.box.min();
+  if (s.change.rows() == before.rows()) cache.predicted = before + s.change;
   LensResult r;
   try {
-    r = lens_.calibrated(lenses, grid, box, h, s.cache, control);
+    r = lens_.calibrated(lenses, grid, box, h, cache, control);
   } catch (const Cancelled&) {
     // The cache holds a consistent flattener and the last finished flattening, but no steady
     // motion to predict from.
     s.change.resize(0, 2);
-    s.cache.predicted.resize(0, 2);
+    cache.predicted.resize(0, 2);
     throw;
   }
   r.zoom_fits = std::move(fits);
+  r.draft = draft && r.model == LensModel::kFocus && lens_.options().mesh_tolerance > 0;
   s.lenses = lenses;
   s.heights = r.heights;
   s.model = r.model;
   s.change.resize(0, 2);
-  if (before.rows() == s.cache.flat.rows()) {
+  if (before.rows() == cache.flat.rows()) {
     // In the current patch's coordinates (a local patch moves with its lens).
-    before.rowwise() += (s.cache.box.min() - box_before).transpose();
-    s.change = s.cache.flat - before;
+    before.rowwise() += (cache.box.min() - box_before).transpose();
+    s.change = cache.flat - before;
   }
   return r;
 }

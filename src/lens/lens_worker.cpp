@@ -17,14 +17,26 @@ LensJob method_job(std::shared_ptr<const LensMethod> method, double width, doubl
   };
 }
 
+namespace {
+
+// A session's update as a job: full frames, or drafts.
+LensJob session_job(std::shared_ptr<LensSession> session, bool draft) {
+  return [session = std::move(session), draft](const std::vector<Lens>& lenses,
+                                               const SolveControl& control) {
+    return std::shared_ptr<const Magnification>(
+        std::make_shared<const LensResult>(session->update(lenses, control, draft)));
+  };
+}
+
+}  // namespace
+
 LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress)
-    : LensWorker(
-          [session = std::make_shared<LensSession>(std::move(session))](
-              const std::vector<Lens>& lenses, const SolveControl& control) {
-            return std::shared_ptr<const Magnification>(
-                std::make_shared<const LensResult>(session->update(lenses, control)));
-          },
-          std::move(progress)) {}
+    : progress_(std::move(progress)) {
+  auto shared = std::make_shared<LensSession>(std::move(session));
+  job_ = session_job(shared, false);
+  draft_ = session_job(shared, true);
+  thread_ = std::thread([this] { run(); });
+}
 
 LensWorker::LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress)
     : job_(std::move(job)), progress_(std::move(progress)) {
@@ -48,6 +60,7 @@ std::uint64_t LensWorker::submit(std::vector<Lens> lenses) {
     std::lock_guard<std::mutex> lock(mutex_);
     waiting_ = std::move(lenses);
     request = waiting_request_ = ++submitted_;
+    if (refining_) cancel_ = true;  // a full frame of an older request: not worth finishing
   }
   wake_.notify_all();
   return request;
@@ -70,6 +83,39 @@ void LensWorker::wait_idle() {
   idle_.wait(lock, [this] { return !busy_ && waiting_request_ == 0; });
 }
 
+bool LensWorker::publish(std::uint64_t request, const LensJob& job,
+                         const std::vector<Lens>& lenses) {
+  SolveControl control{&cancel_, progress_};
+  const auto start = std::chrono::steady_clock::now();
+  std::shared_ptr<const Magnification> result;
+  std::string error;
+  try {
+    result = job(lenses, control);
+    // A job that cannot stop midway finishes; a cancelled request's answer is dropped all the
+    // same.
+    if (cancel_.load()) result = nullptr;
+  } catch (const Cancelled&) {
+    // dropped: latest() keeps the frame before
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const bool draft = result && result->draft;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (result) {
+    latest_.request = request;
+    latest_.result = std::move(result);
+    latest_.solve_ms = ms;
+    latest_.failed_request = 0;
+    latest_.error.clear();
+  } else if (!error.empty()) {
+    latest_.failed_request = request;
+    latest_.error = std::move(error);
+  }
+  return draft;
+}
+
 void LensWorker::run() {
   for (;;) {
     std::vector<Lens> lenses;
@@ -84,35 +130,21 @@ void LensWorker::run() {
       busy_ = true;
       cancel_ = false;
     }
-    SolveControl control{&cancel_, progress_};
-    const auto start = std::chrono::steady_clock::now();
-    std::shared_ptr<const Magnification> result;
-    std::string error;
-    try {
-      result = job_(lenses, control);
-      // A job that cannot stop midway finishes; a cancelled request's answer is dropped all the
-      // same.
-      if (cancel_.load()) result = nullptr;
-    } catch (const Cancelled&) {
-      // dropped: latest() keeps the frame before
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    {
+    // A draft first where there is one; then, unless another request came meanwhile, the same
+    // lenses in full.
+    bool refine = bool(draft_);
+    const LensJob* job = refine ? &draft_ : &job_;
+    for (;;) {
+      const bool draft = publish(request, *job, lenses);
       std::lock_guard<std::mutex> lock(mutex_);
-      if (result) {
-        latest_.request = request;
-        latest_.result = std::move(result);
-        latest_.solve_ms = ms;
-        latest_.failed_request = 0;
-        latest_.error.clear();
-      } else if (!error.empty()) {
-        latest_.failed_request = request;
-        latest_.error = std::move(error);
+      if (!refine || !draft || stop_ || waiting_request_ != 0) {
+        busy_ = refining_ = false;
+        break;
       }
-      busy_ = false;
+      refine = false;
+      refining_ = true;
+      cancel_ = false;
+      job = &job_;
     }
     idle_.notify_all();
   }

@@ -7,12 +7,24 @@
 #include <memory>
 #include <vector>
 
+#include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
 
 namespace geolens {
 
+// The focus lens's mesh of one frame (its grid made to follow the regions and footprints and
+// refined where the start bends), kept for the next: a lens moved clear of the image border has
+// the same mesh, translated, so the next frame neither remeshes nor refactorizes.
+struct MeshMemo {
+  std::vector<Lens> lenses;       // as meshed (fitted)
+  Eigen::AlignedBox2d box;        // the mesh's
+  Grid grid;                      // the mesh
+  std::vector<double> unfolding;  // unfolding_zooms on it
+};
+
 struct SolveCache {
+  MeshMemo mesh;  // kFocus: the last mesh (empty lenses: none)
   std::unique_ptr<Flattener> flattener;
   Eigen::MatrixX2d flat;                // the last flattening, the next solve's starting point
   Eigen::MatrixX2d predicted;           // a better start for the next solve only (or empty)

@@ -106,6 +106,8 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_rejected("magnify " + in + out + " --lens circle:50,-1,20", "outside");
   expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh 3", "mesh");
   expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "mesh");
+  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance -1",
+                  "mesh tolerance");
   expect_rejected("magnify " + in + " -o " + path("nowhere/out.png") + " --lens circle:50,50,20",
                   "nowhere");
   expect_rejected("magnify " + in + " -o " + in + " --lens circle:50,50,20", "input");

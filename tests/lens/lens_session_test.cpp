@@ -2,17 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/eval/focus_measure.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_worker.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/warp/warp_map.h"
 #include "support/lens_options.h"
 
 namespace geolens {
@@ -191,6 +195,71 @@ TEST(LensSession, AnInvalidLensLeavesTheSessionAsItWas) {
   EXPECT_LT(screen_gap(first, again), 1e-6);
 }
 
+// A star polygon, radius 120 px, about `centre`.
+Lens focus_star(const Eigen::Vector2d& centre, double zoom = 2) {
+  std::vector<Eigen::Vector2d> p;
+  for (int k = 0; k < 10; ++k) {
+    const double r = k % 2 == 0 ? 120 : 46, a = M_PI / 2 + k * M_PI / 5;
+    p.push_back(centre + r * Eigen::Vector2d(std::cos(a), -std::sin(a)));
+  }
+  return Lens{Region::polygon(p), zoom};
+}
+
+// The largest distance between where two warps send the points of an 8 px lattice, pixels.
+double picture_gap(const Magnification& a, const Magnification& b, double width, double height) {
+  const WarpMap map_a(a.warp), map_b(b.warp);
+  double worst = 0;
+  for (double y = 4; y < height; y += 8) {
+    for (double x = 4; x < width; x += 8) {
+      const std::optional<Eigen::Vector2d> pa = map_a.forward({x, y}), pb = map_b.forward({x, y});
+      if (!pa || !pb) return INFINITY;
+      worst = std::max(worst, (*pa - *pb).norm());
+    }
+  }
+  return worst;
+}
+
+// A draft is solved on the mesh that follows the region and the footprint, not refined where the
+// ring bends: fewer triangles, the same exact focus, a picture within a few pixels of the full
+// frame's. Drafts and full frames keep their caches apart: a draft after a full frame is the
+// draft before it.
+TEST(LensSession, ADraftIsTheFullFrameOnAnUnrefinedMesh) {
+  LensSession session(1024, 1024);
+  const std::vector<Lens> lenses = {focus_star({512, 512})};
+  const LensResult draft = session.update(lenses, {}, true);
+  const LensResult full = session.update(lenses);
+  EXPECT_TRUE(draft.draft);
+  EXPECT_FALSE(full.draft);
+  EXPECT_LT(draft.mesh.F.rows(), full.mesh.F.rows());
+  for (const LensResult* r : {&draft, &full}) {
+    const TriangleDistortion measures = measure_triangles(r->warp);
+    EXPECT_EQ(summarize(measures).flipped, 0);
+    const FocusMeasure focus = measure_foci(r->warp, measures, lenses).front();
+    EXPECT_NEAR(focus.zoom, 2, 0.01);
+    EXPECT_LT(focus.uniformity, 1.01);
+  }
+  const double gap = picture_gap(draft, full, 1024, 1024);
+  EXPECT_GT(gap, 0);
+  EXPECT_LT(gap, 3);
+  EXPECT_LT(screen_gap(draft, session.update(lenses, {}, true)), 1e-9);
+}
+
+// A lens moved clear of the image border is solved on its last mesh, moved with it: the same
+// triangles, every vertex shifted by the move; and the picture is a fresh solve's.
+TEST(LensSession, ALensMovedClearOfTheBorderKeepsItsMesh) {
+  LensSession session(2048, 2048);
+  const Eigen::Vector2d shift(7.25, -3.5);
+  const LensResult before = session.update({focus_star({1000, 1020})});
+  const Lens moved = focus_star(Eigen::Vector2d(1000, 1020) + shift);
+  const LensResult after = session.update({moved});
+  ASSERT_EQ(after.mesh.F.rows(), before.mesh.F.rows());
+  EXPECT_TRUE(after.mesh.F == before.mesh.F);
+  Eigen::MatrixX2d expected = before.mesh.V;
+  expected.rowwise() += shift.transpose();
+  EXPECT_LT((after.mesh.V - expected).rowwise().norm().maxCoeff(), 1e-9);
+  EXPECT_LT(picture_gap(after, GeometricLens(2048, 2048).solve({moved}), 2048, 2048), 0.01);
+}
+
 // The UI thread submits a lens dragged across the image as fast as it can and reads the latest
 // frame meanwhile: the frames it sees only move forward, and once the worker is idle the last
 // request is the one shown, equal to a fresh solve of its lens.
@@ -211,6 +280,19 @@ TEST(LensWorker, TheLatestRequestIsSolvedWhileTheCallerReads) {
   EXPECT_TRUE(frame.error.empty());
   const LensResult fresh = GeometricLens(1024, 1024).solve({focus_circle(540, 500)});
   EXPECT_LT(screen_gap(*frame.result, fresh), 1e-6);
+}
+
+// A session's worker shows drafts while requests come and the full frame once they stop: the
+// frame it shows at rest is not a draft, and is a fresh solve's.
+TEST(LensWorker, ShowsTheFullFrameOnceTheRequestsStop) {
+  LensWorker worker{LensSession(1024, 1024)};
+  for (int step = 0; step < 8; ++step) worker.submit({focus_star({440.0 + 8 * step, 500})});
+  worker.wait_idle();
+  const LensFrame frame = worker.latest();
+  ASSERT_NE(frame.result, nullptr);
+  EXPECT_FALSE(frame.result->draft);
+  const LensResult fresh = GeometricLens(1024, 1024).solve({focus_star({496, 500})});
+  EXPECT_LT(picture_gap(*frame.result, fresh, 1024, 1024), 1e-6);
 }
 
 // cancel() stops the solve under way: its request is dropped and the frame before stays.

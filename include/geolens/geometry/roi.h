@@ -40,6 +40,9 @@ class RegionShape {
   virtual std::vector<Eigen::Vector2d> anchors() const = 0;
   /// The circle the region is, if it is one.
   virtual std::optional<Circle> circle() const { return std::nullopt; }
+  /// The simple polygon the region is, if it is one (its vertices, pixels): a mesh can then
+  /// follow its boundary exactly.
+  virtual std::optional<std::vector<Eigen::Vector2d>> outline() const { return std::nullopt; }
 };
 
 /// A region of interest in source pixels, with the two fields the lift needs at any point p:
@@ -70,6 +73,8 @@ class Region {
   std::string kind() const;  ///< RegionShape::kind
   /// The circle the region is, if it is one.
   std::optional<Circle> circle() const;
+  /// The simple polygon the region is, if it is one (RegionShape::outline).
+  std::optional<std::vector<Eigen::Vector2d>> outline() const;
   /// Bounding box, pixels.
   Eigen::AlignedBox2d bounds() const;
   /// Where the depth is largest and the region thickest: the centre of a circle, the point of

@@ -4,8 +4,10 @@
 // lenses").
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
+#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/lift.h"
@@ -22,15 +24,22 @@ class ThreadPool;  // core/thread_pool.h: the functions below that take one run 
 double footprint_ratio(const Lens& lens);
 
 /// Whether the focus lens's grid of cell side `cell` (pixels) follows the lenses: when every lens
-/// is a circle of at least 3 cells, GeometricLens meshes the footprints with vertices on every
-/// focus circle and footprint edge (ringed_grid), so no triangle crosses them.
-bool meshed_along_circles(const std::vector<Lens>& lenses, double cell);
+/// is a circle or a polygon spanning at least 3 cells, GeometricLens makes its grid follow every
+/// region's boundary and every footprint's edge (focus_curves), so no triangle crosses them.
+bool meshed_along_regions(const std::vector<Lens>& lenses, double cell);
 
 /// How far outside a region a mesh vertex of cell side `cell` still counts as in its focus,
 /// pixels (the "band" of the functions below): sqrt(2) cells on a grid that does not follow the
 /// regions, so that every triangle that meets a region is whole in its focus; a millionth of a
-/// cell on one that does (meshed_along_circles).
+/// cell on one that does (meshed_along_regions).
 double focus_band(const std::vector<Lens>& lenses, double cell);
+
+/// The curves a focus lens's mesh follows (conform_mesh), pixels: the boundary of every region
+/// (a circle or a polygon) and the edge of every group's footprint, where focus_start's ring
+/// meets the identity, as it is found for a grid of cell `cell` and focus band `band` on a
+/// width x height image.
+std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell, double band,
+                                    double width, double height);
 
 /// The least maximum shape distortion s1 / s2 - 1 of any radial lens that magnifies a disk of
 /// radius r_f uniformly by `zoom` and leaves everything beyond R = ratio r_f in place:
@@ -85,6 +94,12 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
                        const std::vector<double>& log_zooms, double cell, double band, double width,
                        double height, ThreadPool& pool, double slack = 1.1);
 
+/// focus_start's map without its repair of folds, as a function of any points (#P x 2 in,
+/// #P x 2 out, pixels), which runs on `pool` (it must outlive the function).
+std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
+    const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups, double cell,
+    double band, double width, double height, ThreadPool& pool);
+
 /// A fold-free first flattening for focus_field's constraints: each group's power-law ring,
 /// generalized to any region. About the group's centre c (or a point on the image side its
 /// regions cross), along each ray the focus reaches inner (a smooth envelope of the regions'
@@ -95,8 +110,11 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 /// ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle folds (in the
 /// continuum), the focus is magnified exactly, and the image border maps onto itself. For a
 /// circle this is the bound-reaching power ring. The groups are applied one after the other;
-/// their footprints do not overlap. Returns #V x 2, pixels.
-Eigen::MatrixX2d focus_start(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
+/// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
+/// corner, where the start has a cone that a wide triangle averages badly), the vertices of
+/// folded triangles outside the foci move to the mean of their neighbours, a few rounds.
+/// Returns #V x 2, pixels.
+Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
                              double width, double height, ThreadPool& pool);
 
@@ -113,8 +131,8 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 /// to the start's distortion where that is higher (Flattener::admit_anisotropy: where the rings
 /// of several groups overlap); if the flattener does not admit that start (a fold on the mesh,
 /// a fixed vertex moved), from the start at 0.8, 0.6, 0.4, 0.2 of the log zooms, else from the
-/// identity `V` (#V x 2, pixels). `control` as in Flattener::solve.
-FlattenResult flatten_focus(Flattener& flattener, const Eigen::MatrixX2d& V,
+/// identity (the mesh's vertices). `control` as in Flattener::solve.
+FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
                             const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
                             double cell, double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control = nullptr);

@@ -57,6 +57,10 @@ std::string to_string(LensModel model);
 
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
+  /// kFocus: the grid is refined where the lens's start (focus_start) strays from linear over a
+  /// triangle by more than this, output pixels (>= 0; 0: not refined). A draft (LensSession)
+  /// is not refined.
+  double mesh_tolerance = 0.2;
   Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
   double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
   LensModel model = LensModel::kFocus;
@@ -133,13 +137,20 @@ class GeometricLens {
  private:
   friend class LensSession;
   Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
-  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box) const;
+  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
+                 bool draft = false) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
   // The lenses to solve (validated), and the grid (over `box`) to solve them on. kFocus: each
   // zoom lowered to the largest that fits (footprints kept), those zooms in `fits`; other
-  // models: the lenses as they are.
+  // models: the lenses as they are. With a cache, kFocus reuses its last mesh, translated, for
+  // lenses that only moved, clear of the image border, and keeps the mesh it makes. A draft's
+  // mesh is not refined.
   std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
-                           Eigen::AlignedBox2d& box) const;
+                           Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
+                           bool draft = false) const;
+  // Whether every focus group's footprint, with room for its edge's rounding, is clear of the
+  // image border: its mesh then does not depend on where it is.
+  bool clear_of_border(const std::vector<Lens>& lenses) const;
   // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
   PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
                          const std::vector<double>& heights) const;

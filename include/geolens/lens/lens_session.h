@@ -30,7 +30,13 @@ class LensSession {
   /// checked the same way). Throws InvalidInput for an invalid lens (the session is unchanged),
   /// SolverError if a system cannot be solved, Cancelled if `control` stops it (the next update
   /// starts from the last finished frame).
-  LensResult update(const std::vector<Lens>& lenses, const SolveControl& control = {});
+  ///
+  /// A draft (focus model) is solved on a mesh that follows the regions and footprints but is
+  /// not refined where the ring bends (LensOptions::mesh_tolerance): a drag's frames, about
+  /// as fast as the grid alone; its result says `draft`. Drafts and full frames keep what they
+  /// leave for the next apart, so a full frame between two drafts costs neither its speed.
+  LensResult update(const std::vector<Lens>& lenses, const SolveControl& control = {},
+                    bool draft = false);
 
   /// Forgets every frame: the next update() starts as a first placement.
   void reset();

@@ -43,8 +43,11 @@ struct LensFrame {
 /// is thread-safe.
 class LensWorker {
  public:
-  /// The geometric lens, frame after frame (its results are LensResults). `progress`
-  /// (optional) is called on the worker thread during each solve.
+  /// The geometric lens, frame after frame (its results are LensResults): each request is
+  /// solved as a draft first (LensSession::update), then, unless another request came
+  /// meanwhile, in full (a request submitted during that full solve stops it). So a drag shows
+  /// drafts at a draft's pace and the lens at rest its full frame. `progress` (optional) is
+  /// called on the worker thread during each solve.
   explicit LensWorker(LensSession session,
                       std::function<void(const SolveProgress&)> progress = nullptr);
   /// Any job, e.g. method_job(a ClassicMethod).
@@ -66,14 +69,19 @@ class LensWorker {
 
  private:
   void run();
+  // Runs `job` on `lenses` for `request` and makes its answer (or its error) the latest;
+  // returns whether the answer is a draft.
+  bool publish(std::uint64_t request, const LensJob& job, const std::vector<Lens>& lenses);
 
   LensJob job_;
+  LensJob draft_;  // a session's drafts (empty for another job)
   std::function<void(const SolveProgress&)> progress_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::vector<Lens> waiting_;
   std::uint64_t submitted_ = 0, waiting_request_ = 0;  // waiting_request_ 0: none waits
   bool busy_ = false, stop_ = false;
+  bool refining_ = false;  // solving in full a request already shown as a draft
   std::atomic<bool> cancel_{false};
   LensFrame latest_;
   std::thread thread_;  // started by the constructor, once every member above exists

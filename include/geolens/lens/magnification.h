@@ -16,6 +16,10 @@ struct Magnification {
   /// per lens: the magnification measured at its region's peak (magnification_at over
   /// zoom_measure_radius, distortion.h)
   std::vector<double> zoom_measured;
+  /// A draft (LensSession::update with draft): solved on a mesh that was not refined where the
+  /// focus lens's ring bends (LensOptions::mesh_tolerance); the same lenses solved in full may
+  /// move points by a pixel or two.
+  bool draft = false;
 };
 
 }  // namespace geolens
