@@ -38,7 +38,7 @@ for kind in shared static; do
   # Configured for the default prefix and installed elsewhere: both package files must relocate.
   run "configure-$kind" cmake -S "$root" -B "$work/build-$kind" -DCMAKE_BUILD_TYPE=Release \
     -DBUILD_SHARED_LIBS="$shared" -DGEOLENS_BUILD_TESTS=OFF -DGEOLENS_BUILD_BENCH=OFF \
-    -DGEOLENS_BUILD_VIEWER=OFF
+    -DGEOLENS_BUILD_VIEWER=OFF -DGEOLENS_BUILD_PYTHON=OFF
   run "build-$kind" cmake --build "$work/build-$kind" --target geolens_cli -j"$jobs"
   run "install-$kind" cmake --install "$work/build-$kind" --prefix "$prefix"
   "$prefix/bin/geolens" --version >/dev/null || fail "$kind: the installed CLI does not run"

@@ -28,7 +28,8 @@ export ASAN_OPTIONS="$common:detect_leaks=$leaks:strict_string_checks=1:detect_s
 export UBSAN_OPTIONS="$common"
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DCMAKE_CXX_FLAGS="${flags[*]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[*]}" -DGEOLENS_BUILD_BENCH=OFF
+  -DCMAKE_CXX_FLAGS="${flags[*]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[*]}" -DGEOLENS_BUILD_BENCH=OFF \
+  -DGEOLENS_BUILD_PYTHON=OFF  # a sanitized module does not load into an uninstrumented python3
 cmake --build "$build" -j"$(nproc)"
 status=0
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)" || status=$?

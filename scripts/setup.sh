@@ -6,11 +6,14 @@
 # (window, input), libepoxy (loads OpenGL 3.3 core), Dear ImGui (the panel; its static library
 # is built with imgui_freetype, so freetype too); its tests run it under xvfb-run (xvfb, and xauth,
 # which xvfb-run needs and xvfb only recommends) with Mesa's software OpenGL (libgl1-mesa-dri).
+# The Python module: pybind11 and Python's headers build it, numpy and pytest test it (with
+# Debian's /usr/bin/python3, which has them, whatever python3 comes first on PATH).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev
           libspng-dev libjpeg62-turbo-dev libstb-dev libgtest-dev libbenchmark-dev
-          libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev xvfb xauth libgl1-mesa-dri)
+          libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev xvfb xauth libgl1-mesa-dri
+          pybind11-dev python3-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -19,5 +22,5 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update
   DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
 fi
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j"$(nproc)"
