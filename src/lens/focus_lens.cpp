@@ -46,6 +46,28 @@ double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
   return d;
 }
 
+// The farthest t >= 0 where the ray c + t u (u a unit vector) meets the boundary of a region
+// that is a circle or a polygon, pixels; 0 if it does not.
+double farthest_crossing(const Region& region, const Eigen::Vector2d& c, const Eigen::Vector2d& u) {
+  if (const std::optional<Circle> circle = region.circle()) {
+    const Eigen::Vector2d w = circle->center - c;
+    const double b = u.dot(w), d = b * b - w.squaredNorm() + circle->radius * circle->radius;
+    return d >= 0 ? std::max(b + std::sqrt(d), 0.0) : 0.0;
+  }
+  double t = 0;
+  const std::vector<Eigen::Vector2d> v = region.outline().value();
+  for (size_t k = 0, j = v.size() - 1; k < v.size(); j = k++) {
+    // c + t u = v[j] + s (v[k] - v[j]), s in [0, 1], by Cramer's rule.
+    const Eigen::Vector2d e = v[k] - v[j], w = v[j] - c;
+    const double det = u.x() * -e.y() + u.y() * e.x();
+    if (det == 0) continue;  // parallel
+    const double along = (w.x() * -e.y() + w.y() * e.x()) / det;
+    const double s = (u.x() * w.y() - u.y() * w.x()) / det;
+    if (s >= 0 && s <= 1) t = std::max(t, along);
+  }
+  return t;
+}
+
 // A convex corner of a polygon region: the outward unit normals of its two edges.
 struct Miter {
   Eigen::Vector2d corner, n1, n2;
@@ -164,17 +186,30 @@ struct Ring {
     }
     // Along each ray, from the reach inwards in half-cell steps to the first point within
     // `near` of a region, plus a step and `near` (the vertices of the focus between two rays).
-    // Where the band is narrower than a step (circles, which the mesh follows), the crossing is
-    // found to kCrossing px by bisection instead and padded by the arc between two rays there, so
-    // that the ring does not depend on the mesh; a polygon's band (sqrt 2 cells) is wider, and
-    // its focus depends on the mesh anyway.
+    // Where the band is narrower than a step (a mesh that follows the regions), the crossing is
+    // found to kCrossing px by bisection instead, or exactly where every region is a circle or a
+    // polygon (the farthest point where the ray meets a boundary), and padded by the arc between
+    // two rays there, so that the ring does not depend on the mesh; a band of sqrt 2 cells (a
+    // mask, or a region smaller than the mesh resolves) is wider, and its focus depends on the
+    // mesh anyway.
     constexpr double kCrossing = 1e-3;  // pixels
     const double step = 0.5 * cell;
     const bool refine = near < step;
+    const bool exact =
+        refine && std::all_of(group.lenses.begin(), group.lenses.end(), [&](size_t k) {
+          return lenses[k].region.circle() || lenses[k].region.outline();
+        });
     std::vector<double> found(kBins);
     for (int k = 0; k < kBins; ++k) {
       const double a = 2 * std::numbers::pi * k / kBins;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      if (exact) {
+        double t = 0;
+        for (size_t j : group.lenses)
+          t = std::max(t, farthest_crossing(lenses[j].region, centre, u));
+        found[size_t(k)] = std::min(t * (1 + 2 * std::numbers::pi / kBins) + near, reach);
+        continue;
+      }
       auto away = [&](double t) { return group_distance(group, lenses, centre + t * u) > near; };
       double t = reach;
       while (t > 0 && away(t)) t -= step;

@@ -47,8 +47,9 @@ bool same(const Geometry& a, const Geometry& b) {
     return false;
   for (size_t k = 0; k < a.paths.size(); ++k)
     if (a.paths[k].rows() != b.paths[k].rows() ||
-        std::memcmp(a.paths[k].data(), b.paths[k].data(),
-                    sizeof(double) * size_t(a.paths[k].size())) != 0)
+        (a.paths[k].size() > 0 &&  // an empty path's data() may be null, which memcmp refuses
+         std::memcmp(a.paths[k].data(), b.paths[k].data(),
+                     sizeof(double) * size_t(a.paths[k].size())) != 0))
       return false;
   for (size_t k = 0; k < a.members.size(); ++k)
     if (!same(a.members[k], b.members[k])) return false;
