@@ -255,14 +255,6 @@ struct Ring {
     }
   }
 
-  // Whether the image border is too far to round the footprint's edge anywhere (smooth_min):
-  // 1.25 times the group's disk from its centre or more.
-  bool clear_of_border() const {
-    const double room = 1.25 * ((centre - disk_centre).norm() + disk_radius);
-    return centre.x() >= room && centre.y() >= room && width - centre.x() >= room &&
-           height - centre.y() >= room;
-  }
-
   double inner(const Eigen::Vector2d& u) const {
     if (inner_.size() == 1) return inner_[0];
     double a = std::atan2(u.y(), u.x()) / (2 * std::numbers::pi) * kBins;
@@ -382,6 +374,13 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses) {
   std::vector<double> log_zooms;
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
   return focus_groups(lenses, log_zooms);
+}
+
+bool footprint_clear_of_border(const FocusGroup& group, double width, double height) {
+  // smooth_min rounds the footprint's edge where the border is nearer than 1.25 times the edge.
+  const double room = 1.25 * (group.reach + group.margin);
+  return group.centre.x() >= room && group.centre.y() >= room && width - group.centre.x() >= room &&
+         height - group.centre.y() >= room;
 }
 
 double radial_distortion_bound(double zoom, double ratio) {
@@ -604,7 +603,7 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
   for (const FocusGroup& group : focus_groups(lenses)) {
     if (group.log_zoom <= 0) continue;  // nothing moves
     auto ring = std::make_shared<const Ring>(group, lenses, cell, band, width, height);
-    if (ring->inner_.size() == 1 && ring->clear_of_border()) {
+    if (ring->inner_.size() == 1 && footprint_clear_of_border(group, width, height)) {
       // A circle about its centre: the footprint's edge is the group's disk.
       curves.push_back(circle_curve(ring->centre, ring->disk_radius));
       continue;

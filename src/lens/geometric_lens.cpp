@@ -139,18 +139,6 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
   return LensModel::kLift;
 }
 
-bool GeometricLens::clear_of_border(const std::vector<Lens>& lenses) const {
-  // smooth_min (focus_lens.cpp) rounds the footprint's edge where the border is nearer than
-  // 1.25 times the edge.
-  for (const FocusGroup& g : focus_groups(lenses)) {
-    const double room = 1.25 * (g.reach + g.margin) + 1;
-    if (g.centre.x() < room || g.centre.y() < room || width_ - g.centre.x() < room ||
-        height_ - g.centre.y() < room)
-      return false;
-  }
-  return true;
-}
-
 namespace {
 
 // The translation that takes lenses `from` to `to` (the same shapes, zooms and footprints), if
@@ -208,7 +196,10 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::ve
   // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding;
   // the last frame's mesh, moved, where the lenses only moved clear of the border.
   MeshMemo* memo = cache ? &cache->mesh : nullptr;
-  const bool clear = clear_of_border(out);
+  const std::vector<FocusGroup> groups = focus_groups(out);
+  const bool clear = std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
+    return footprint_clear_of_border(g, width_, height_);
+  });
   if (const std::optional<Eigen::Vector2d> shift =
           memo && clear ? translation(memo->lenses, out) : std::nullopt) {
     box = solved_box(out);

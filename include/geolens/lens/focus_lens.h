@@ -67,6 +67,11 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
 /// The same at the lenses' own zooms.
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
 
+/// Whether the image border (width x height, pixels) is too far from `group`'s footprint to round
+/// its edge anywhere: 1.25 times the group's disk (radius reach + margin) from its centre or more.
+/// Such a group's footprint, and the mesh that follows it, are the same wherever it is.
+bool footprint_clear_of_border(const FocusGroup& group, double width, double height);
+
 /// Per lens, the largest zoom at which its group fits where it is on a width x height image
 /// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the
 /// group's centre (the image border where nearer), less two cells for the mesh to bend in, must

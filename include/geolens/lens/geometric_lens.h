@@ -148,9 +148,6 @@ class GeometricLens {
   std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
                            Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
                            bool draft = false) const;
-  // Whether every focus group's footprint, with room for its edge's rounding, is clear of the
-  // image border: its mesh then does not depend on where it is.
-  bool clear_of_border(const std::vector<Lens>& lenses) const;
   // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
   PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
                          const std::vector<double>& heights) const;
