@@ -1,6 +1,8 @@
 // Runs the real `geolens` binary: exit codes, one-line errors, no partial outputs, the stats
 // document, the identity at zoom 1, and the exported flattening checked by an independent ARAP.
 
+#include "support/cli_test.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,8 +15,6 @@
 
 #include "geolens/io/image.h"
 #include "support/arap_reference.h"
-#include "support/cli_runner.h"
-#include "support/scratch_folder.h"
 
 namespace geolens {
 namespace {
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 using testing::CliRun;
 
-class Cli : public testing::ScratchFolderTest {
+class Cli : public testing::CliTest {
  protected:
   void SetUp() override {
     ScratchFolderTest::SetUp();
@@ -38,86 +38,42 @@ class Cli : public testing::ScratchFolderTest {
       }
     save_image(path("in.png"), image);
   }
-
-  CliRun run(const std::string& arguments) const {
-    return testing::run_cli(arguments, path("stderr.txt"));
-  }
-
-  // Bad input: exit 2, exactly one line on stderr, no output written.
-  void expect_rejected(const std::string& arguments, const std::string& mentions) {
-    SCOPED_TRACE(arguments);
-    const CliRun r = run(arguments);
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(path("out.png")));
-    EXPECT_FALSE(fs::exists(path("stats.json")));
-    for (const auto& entry : fs::directory_iterator(dir_))
-      EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
-  }
-  // Every file under the scratch folder but the captured stderr, with its bytes.
-  std::map<std::string, std::string> files() const {
-    std::map<std::string, std::string> contents;
-    for (const auto& entry : fs::recursive_directory_iterator(dir_)) {
-      if (!entry.is_regular_file() || entry.path() == path("stderr.txt")) continue;
-      std::ifstream in(entry.path(), std::ios::binary);
-      std::stringstream bytes;
-      bytes << in.rdbuf();
-      contents[entry.path().string()] = bytes.str();
-    }
-    return contents;
-  }
-
-  // Outputs that clash: exit 2, exactly one line naming the problem, and every file as it was
-  // (no output written, no input touched, no temporary left).
-  void expect_refused(const std::string& arguments, const std::string& mentions) {
-    SCOPED_TRACE(arguments);
-    const std::map<std::string, std::string> before = files();
-    const CliRun r = run(arguments);
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-    EXPECT_TRUE(files() == before) << r.err;
-  }
 };
 
 TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   const std::string in = path("in.png"),
                     out = " -o " + path("out.png") + " --stats " + path("stats.json");
-  expect_rejected("magnify " + path("missing.png") + out + " --lens circle:50,50,20",
-                  "missing.png");
+  expect_refused("magnify " + path("missing.png") + out + " --lens circle:50,50,20", "missing.png");
   {
     std::ofstream corrupt(path("corrupt.png"), std::ios::binary);
     corrupt << "\x89PNG\r\n\x1a\nthis is not a png at all";
   }
-  expect_rejected("magnify " + path("corrupt.png") + out + " --lens circle:50,50,20",
-                  "corrupt.png");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,0", "radius");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,-4", "radius");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,nan", "radius");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20:0", "zoom");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20:-2", "zoom");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20:inf", "zoom");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20:9", "zoom");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --zoom 0.5", "zoom");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --alpha -0.1", "alpha");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --alpha nan", "alpha");
-  expect_rejected("magnify " + in + out + " --lens circle:300,50,20", "outside");
-  expect_rejected("magnify " + in + out + " --lens circle:50,-1,20", "outside");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh 3", "mesh");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "mesh");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance -1",
-                  "mesh tolerance");
-  expect_rejected("magnify " + in + " -o " + path("nowhere/out.png") + " --lens circle:50,50,20",
-                  "nowhere");
-  expect_rejected("magnify " + in + " -o " + in + " --lens circle:50,50,20", "input");
-  expect_rejected("magnify " + in + " -o " + path("out.gif") + " --lens circle:50,50,20",
-                  "out.gif");
-  expect_rejected("magnify " + in + out + " --lens square:50,50,20", "circle:");
-  expect_rejected("magnify " + in + out, "--lens");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --profile cone", "cone");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --model ridge", "ridge");
-  expect_rejected("magnify " + in + out + " --lens circle:50,50,20 --size 0x10", "--size");
+  expect_refused("magnify " + path("corrupt.png") + out + " --lens circle:50,50,20", "corrupt.png");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,0", "radius");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,-4", "radius");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,nan", "radius");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20:0", "zoom");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20:-2", "zoom");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20:inf", "zoom");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20:9", "zoom");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --zoom 0.5", "zoom");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha -0.1", "alpha");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha nan", "alpha");
+  expect_refused("magnify " + in + out + " --lens circle:300,50,20", "outside");
+  expect_refused("magnify " + in + out + " --lens circle:50,-1,20", "outside");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 3", "mesh");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "mesh");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance -1",
+                 "mesh tolerance");
+  expect_refused("magnify " + in + " -o " + path("nowhere/out.png") + " --lens circle:50,50,20",
+                 "nowhere");
+  expect_refused("magnify " + in + " -o " + in + " --lens circle:50,50,20", "input");
+  expect_refused("magnify " + in + " -o " + path("out.gif") + " --lens circle:50,50,20", "out.gif");
+  expect_refused("magnify " + in + out + " --lens square:50,50,20", "circle:");
+  expect_refused("magnify " + in + out, "--lens");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --profile cone", "cone");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --model ridge", "ridge");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --size 0x10", "--size");
 }
 
 TEST_F(Cli, RejectsBadPolygonsAndMasks) {
@@ -127,20 +83,20 @@ TEST_F(Cli, RejectsBadPolygonsAndMasks) {
     std::ofstream(path(name)) << text;
     return " --lens polygon:" + path(name);
   };
-  expect_rejected("magnify " + in + out + polygon("two.txt", "10 10\n50 10\n"), "3");
-  expect_rejected("magnify " + in + out + polygon("flat.txt", "10 10\n50 10\n90 10\n"), "area");
-  expect_rejected("magnify " + in + out + polygon("bowtie.txt", "10 10\n90 90\n90 10\n20 60\n"),
-                  "intersect");
-  expect_rejected("magnify " + in + out + polygon("outside.txt", "10 10\n400 10\n10 90\n"),
-                  "outside");
-  expect_rejected("magnify " + in + out + polygon("words.txt", "10 10\nten 90\n90 10\n"),
-                  "words.txt");
-  expect_rejected("magnify " + in + out + " --lens polygon:" + path("none.txt"), "none.txt");
+  expect_refused("magnify " + in + out + polygon("two.txt", "10 10\n50 10\n"), "3");
+  expect_refused("magnify " + in + out + polygon("flat.txt", "10 10\n50 10\n90 10\n"), "area");
+  expect_refused("magnify " + in + out + polygon("bowtie.txt", "10 10\n90 90\n90 10\n20 60\n"),
+                 "intersect");
+  expect_refused("magnify " + in + out + polygon("outside.txt", "10 10\n400 10\n10 90\n"),
+                 "outside");
+  expect_refused("magnify " + in + out + polygon("words.txt", "10 10\nten 90\n90 10\n"),
+                 "words.txt");
+  expect_refused("magnify " + in + out + " --lens polygon:" + path("none.txt"), "none.txt");
   save_image(path("empty.png"), Image(256, 192, 1, 0));
-  expect_rejected("magnify " + in + out + " --lens mask:" + path("empty.png"), "non-zero");
+  expect_refused("magnify " + in + out + " --lens mask:" + path("empty.png"), "non-zero");
   save_image(path("small.png"), Image(100, 100, 1, 255));
-  expect_rejected("magnify " + in + out + " --lens mask:" + path("small.png"), "100x100");
-  expect_rejected("magnify " + in + out + " --lens mask:" + path("none.png"), "none.png");
+  expect_refused("magnify " + in + out + " --lens mask:" + path("small.png"), "100x100");
+  expect_refused("magnify " + in + out + " --lens mask:" + path("none.png"), "none.png");
 }
 
 // Every output of a run is checked before any work: none is an existing folder, none names the

@@ -16,8 +16,7 @@
 #include "geolens/io/image.h"
 #include "geolens/io/point_csv.h"
 #include "geolens/render/overlay.h"
-#include "support/cli_runner.h"
-#include "support/scratch_folder.h"
+#include "support/cli_test.h"
 
 namespace geolens {
 namespace {
@@ -28,7 +27,7 @@ using testing::CliRun;
 
 const std::string kLens = " --lens circle:256,192,60:2";
 
-class MapCli : public testing::ScratchFolderTest {
+class MapCli : public testing::CliTest {
  protected:
   void SetUp() override {
     ScratchFolderTest::SetUp();
@@ -53,10 +52,6 @@ class MapCli : public testing::ScratchFolderTest {
     return s.str();
   }
 
-  CliRun run(const std::string& arguments) const {
-    return testing::run_cli(arguments, path("stderr.txt"));
-  }
-
   // The standard output of `geolens arguments`, and its exit code.
   std::pair<std::string, int> output_of(const std::string& arguments) const {
     const std::string command =
@@ -67,25 +62,6 @@ class MapCli : public testing::ScratchFolderTest {
     for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
     const int status = pclose(pipe);
     return {out, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
-  }
-
-  std::map<std::string, std::string> files() const {
-    std::map<std::string, std::string> contents;
-    for (const auto& entry : fs::directory_iterator(dir_))
-      if (entry.path() != path("stderr.txt"))
-        contents[entry.path().string()] = read(entry.path().filename().string());
-    return contents;
-  }
-
-  // Bad input: exit 2, one line on stderr naming the problem, no file written or changed.
-  void expect_rejected(const std::string& arguments, const std::string& mentions) const {
-    SCOPED_TRACE(arguments);
-    const std::map<std::string, std::string> before = files();
-    const CliRun r = run(arguments);
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-    EXPECT_TRUE(files() == before) << r.err;
   }
 };
 
@@ -153,32 +129,32 @@ TEST_F(MapCli, PointsOutsideAreDroppedWithAWarning) {
 TEST_F(MapCli, RefusesBadInputWithOneLineAndExitTwo) {
   const std::string size = " --size 512x384" + kLens, out = " -o " + path("out.geojson");
   write("bad.csv", "x,y\n1,2\n3,oops\n");
-  expect_rejected("map " + path("bad.csv") + size + " -o " + path("out.csv"),
-                  path("bad.csv") + ":3: expected two finite numbers");
+  expect_refused("map " + path("bad.csv") + size + " -o " + path("out.csv"),
+                 path("bad.csv") + ":3: expected two finite numbers");
   write("bad.geojson", R"({"type":"FeatureCollection","features":[)"
                        R"({"type":"Feature","geometry":null,"properties":null},)"
                        R"({"type":"Feature","geometry":{"type":"LineString","coordinates":)"
                        R"([[1,2]]},"properties":null}]})");
-  expect_rejected("map " + path("bad.geojson") + size + out,
-                  "'" + path("bad.geojson") + "': feature 1: LineString");
+  expect_refused("map " + path("bad.geojson") + size + out,
+                 "'" + path("bad.geojson") + "': feature 1: LineString");
   write("broken.geojson", "{\"type\":");
-  expect_rejected("map " + path("broken.geojson") + size + out, "not JSON");
+  expect_refused("map " + path("broken.geojson") + size + out, "not JSON");
   write("in.txt", "1,2\n");
-  expect_rejected("map " + path("in.txt") + size, "--format");
-  expect_rejected("map - " + size + " < " + path("in.csv"), "--format");
-  expect_rejected("map " + path("in.csv") + size + " --format svg", "svg");
-  expect_rejected("map " + path("in.csv") + size + out, "the output has the input's format");
-  expect_rejected("map " + path("in.csv") + kLens, "--image FILE or --size WxH");
-  expect_rejected("map " + path("in.csv") + size + " --max-segment 0", "--max-segment");
-  expect_rejected("map " + path("missing.csv") + size, "missing.csv");
-  expect_rejected("map " + path("in.csv") + " --image " + path("missing.png") + kLens,
-                  "missing.png");
-  expect_rejected("map " + path("in.csv") + " --size 512x384 --lens circle:700,96,30", "outside");
-  expect_rejected("map " + path("in.csv") + size + " -o " + path("in.csv"),
-                  "would overwrite the input");
-  expect_rejected("map " + path("in.csv") + size + " -o " + path("./in.csv"),
-                  "would overwrite the input");
-  expect_rejected("map " + path("in.csv") + size + " -o " + path("nowhere/out.csv"), "nowhere");
+  expect_refused("map " + path("in.txt") + size, "--format");
+  expect_refused("map - " + size + " < " + path("in.csv"), "--format");
+  expect_refused("map " + path("in.csv") + size + " --format svg", "svg");
+  expect_refused("map " + path("in.csv") + size + out, "the output has the input's format");
+  expect_refused("map " + path("in.csv") + kLens, "--image FILE or --size WxH");
+  expect_refused("map " + path("in.csv") + size + " --max-segment 0", "--max-segment");
+  expect_refused("map " + path("missing.csv") + size, "missing.csv");
+  expect_refused("map " + path("in.csv") + " --image " + path("missing.png") + kLens,
+                 "missing.png");
+  expect_refused("map " + path("in.csv") + " --size 512x384 --lens circle:700,96,30", "outside");
+  expect_refused("map " + path("in.csv") + size + " -o " + path("in.csv"),
+                 "would overwrite the input");
+  expect_refused("map " + path("in.csv") + size + " -o " + path("./in.csv"),
+                 "would overwrite the input");
+  expect_refused("map " + path("in.csv") + size + " -o " + path("nowhere/out.csv"), "nowhere");
 }
 
 TEST_F(MapCli, MagnifyDrawsTheOverlay) {
@@ -202,10 +178,10 @@ TEST_F(MapCli, MagnifyDrawsTheOverlay) {
   EXPECT_TRUE(fs::exists(path("both.png")));
   // A bad overlay: nothing written.
   write("bad.geojson", R"({"type":"Point","coordinates":[1]})");
-  expect_rejected(magnify + " -o " + path("out.png") + " --overlay " + path("bad.geojson"),
-                  "bad.geojson");
-  expect_rejected(magnify + " -o " + path("out.png") + " --overlay " + path("missing.geojson"),
-                  "missing.geojson");
+  expect_refused(magnify + " -o " + path("out.png") + " --overlay " + path("bad.geojson"),
+                 "bad.geojson");
+  expect_refused(magnify + " -o " + path("out.png") + " --overlay " + path("missing.geojson"),
+                 "missing.geojson");
 }
 
 }  // namespace

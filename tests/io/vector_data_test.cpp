@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "support/vector_data.h"
+
 namespace geolens {
 namespace {
 
@@ -18,26 +20,24 @@ Eigen::MatrixX2d square(double side) {
   return P;
 }
 
-Geometry make(GeometryType type, std::vector<Eigen::MatrixX2d> paths, std::vector<int> rings = {}) {
-  Geometry g;
-  g.type = type;
-  g.paths = std::move(paths);
-  g.rings = std::move(rings);
-  return g;
-}
+using test::make_geometry;
 
 TEST(VectorData, ValidGeometriesHaveNoProblem) {
   const Eigen::MatrixX2d point = Eigen::RowVector2d(1, 2), line = Eigen::MatrixX2d::Ones(2, 2);
   Geometry collection;
   collection.type = GeometryType::kGeometryCollection;
-  collection.members = {make(GeometryType::kPoint, {point}), collection};
+  collection.members = {make_geometry(GeometryType::kPoint, {point}), collection};
   for (const Geometry& g :
-       {make(GeometryType::kPoint, {point}), make(GeometryType::kMultiPoint, {line}),
-        make(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)}),
-        make(GeometryType::kLineString, {line}), make(GeometryType::kMultiLineString, {}),
-        make(GeometryType::kMultiLineString, {line, line}),
-        make(GeometryType::kPolygon, {square(4), square(1)}), make(GeometryType::kPolygon, {}),
-        make(GeometryType::kMultiPolygon, {square(4), square(1), square(2)}, {2, 1}), collection})
+       {make_geometry(GeometryType::kPoint, {point}),
+        make_geometry(GeometryType::kMultiPoint, {line}),
+        make_geometry(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)}),
+        make_geometry(GeometryType::kLineString, {line}),
+        make_geometry(GeometryType::kMultiLineString, {}),
+        make_geometry(GeometryType::kMultiLineString, {line, line}),
+        make_geometry(GeometryType::kPolygon, {square(4), square(1)}),
+        make_geometry(GeometryType::kPolygon, {}),
+        make_geometry(GeometryType::kMultiPolygon, {square(4), square(1), square(2)}, {2, 1}),
+        collection})
     EXPECT_EQ(geometry_problem(g), "") << to_string(g.type);
 }
 
@@ -48,23 +48,26 @@ TEST(VectorData, EachBrokenShapeIsNamed) {
   not_finite(2, 1) = std::numeric_limits<double>::infinity();
   Geometry member_broken;
   member_broken.type = GeometryType::kGeometryCollection;
-  member_broken.members = {make(GeometryType::kLineString, {Eigen::RowVector2d(1, 1)})};
-  Geometry point_with_members = make(GeometryType::kPoint, {Eigen::RowVector2d(1, 1)});
+  member_broken.members = {make_geometry(GeometryType::kLineString, {Eigen::RowVector2d(1, 1)})};
+  Geometry point_with_members = make_geometry(GeometryType::kPoint, {Eigen::RowVector2d(1, 1)});
   point_with_members.members = {point_with_members};
   const std::vector<std::pair<Geometry, std::string>> cases = {
-      {make(GeometryType::kPoint, {}), "Point: needs one path of one position"},
-      {make(GeometryType::kPoint, {Eigen::MatrixX2d::Ones(2, 2)}), "Point: needs one path"},
-      {make(GeometryType::kMultiPoint, {not_finite}), "MultiPoint: path 0 row 2 is not finite"},
-      {make(GeometryType::kLineString, {Eigen::RowVector2d(1, 1)}),
+      {make_geometry(GeometryType::kPoint, {}), "Point: needs one path of one position"},
+      {make_geometry(GeometryType::kPoint, {Eigen::MatrixX2d::Ones(2, 2)}),
+       "Point: needs one path"},
+      {make_geometry(GeometryType::kMultiPoint, {not_finite}),
+       "MultiPoint: path 0 row 2 is not finite"},
+      {make_geometry(GeometryType::kLineString, {Eigen::RowVector2d(1, 1)}),
        "LineString: path 0 has 1 positions, needs at least 2"},
-      {make(GeometryType::kMultiLineString, {not_finite, Eigen::RowVector2d(1, 1)}),
+      {make_geometry(GeometryType::kMultiLineString, {not_finite, Eigen::RowVector2d(1, 1)}),
        "MultiLineString: line 0 row 2 is not finite"},
-      {make(GeometryType::kPolygon, {square(2), open}), "Polygon: ring 1 is not closed"},
-      {make(GeometryType::kMultiPolygon, {square(2), open}, {1, 1}),
+      {make_geometry(GeometryType::kPolygon, {square(2), open}), "Polygon: ring 1 is not closed"},
+      {make_geometry(GeometryType::kMultiPolygon, {square(2), open}, {1, 1}),
        "MultiPolygon: polygon 1: ring 0 is not closed"},
-      {make(GeometryType::kMultiPolygon, {square(2)}, {2}), "ring counts sum to 2 but it has 1"},
-      {make(GeometryType::kMultiPolygon, {square(2)}, {1, 0}), "polygon 1 has 0 rings"},
-      {make(GeometryType::kPolygon, {square(2)}, {1}), "Polygon: has ring counts"},
+      {make_geometry(GeometryType::kMultiPolygon, {square(2)}, {2}),
+       "ring counts sum to 2 but it has 1"},
+      {make_geometry(GeometryType::kMultiPolygon, {square(2)}, {1, 0}), "polygon 1 has 0 rings"},
+      {make_geometry(GeometryType::kPolygon, {square(2)}, {1}), "Polygon: has ring counts"},
       {point_with_members, "Point: has members"},
       {member_broken, "GeometryCollection: member 0: LineString: path 0 has 1 positions"},
   };
@@ -73,9 +76,9 @@ TEST(VectorData, EachBrokenShapeIsNamed) {
     EXPECT_NE(problem.find(mentions), std::string::npos) << problem << " / " << mentions;
   }
   VectorData data;
-  data.features = {{make(GeometryType::kPoint, {Eigen::RowVector2d(1, 1)}), "", "null"},
+  data.features = {{make_geometry(GeometryType::kPoint, {Eigen::RowVector2d(1, 1)}), "", "null"},
                    {std::nullopt, "", "null"},
-                   {make(GeometryType::kPolygon, {open}), "", "null"}};
+                   {make_geometry(GeometryType::kPolygon, {open}), "", "null"}};
   EXPECT_EQ(vector_data_problem(data).rfind("feature 2: Polygon: ring 0 is not closed", 0), 0u);
   data.features.pop_back();
   EXPECT_EQ(vector_data_problem(data), "");

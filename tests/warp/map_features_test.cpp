@@ -16,6 +16,7 @@
 #include "geolens/lens/focus_lens.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/warp/densify.h"
+#include "support/vector_data.h"
 
 namespace geolens {
 namespace {
@@ -38,13 +39,7 @@ Eigen::MatrixX2d path(std::initializer_list<std::pair<double, double>> points) {
   return P;
 }
 
-Geometry make(GeometryType type, std::vector<Eigen::MatrixX2d> paths, std::vector<int> rings = {}) {
-  Geometry g;
-  g.type = type;
-  g.paths = std::move(paths);
-  g.rings = std::move(rings);
-  return g;
-}
+using test::make_geometry;
 
 Feature feature(Geometry g, std::string properties = "null") {
   return {std::move(g), "", std::move(properties)};
@@ -54,23 +49,25 @@ Feature feature(Geometry g, std::string properties = "null") {
 VectorData inside_features() {
   VectorData data;
   data.features = {
-      feature(make(GeometryType::kPoint, {path({{kCentre.x() + 20, kCentre.y() - 30}})})),
-      feature(make(GeometryType::kMultiPoint, {path({{10, 10}, {500, 420}, {1000, 700}})})),
-      feature(make(GeometryType::kLineString, {path({{100, 380}, {900, 420}})})),
-      feature(make(GeometryType::kMultiLineString,
-                   {path({{400, 300}, {560, 500}}), path({{480, 100}, {480, 700}, {20, 700}})})),
-      feature(make(GeometryType::kPolygon,
-                   {path({{420, 340}, {540, 340}, {540, 460}, {420, 460}, {420, 340}}),
-                    path({{470, 390}, {490, 390}, {490, 410}, {470, 390}})})),
-      feature(make(GeometryType::kMultiPolygon,
-                   {path({{300, 300}, {350, 300}, {350, 350}, {300, 300}}),
-                    path({{600, 450}, {700, 450}, {650, 560}, {600, 450}})},
-                   {1, 1})),
+      feature(make_geometry(GeometryType::kPoint, {path({{kCentre.x() + 20, kCentre.y() - 30}})})),
+      feature(
+          make_geometry(GeometryType::kMultiPoint, {path({{10, 10}, {500, 420}, {1000, 700}})})),
+      feature(make_geometry(GeometryType::kLineString, {path({{100, 380}, {900, 420}})})),
+      feature(make_geometry(
+          GeometryType::kMultiLineString,
+          {path({{400, 300}, {560, 500}}), path({{480, 100}, {480, 700}, {20, 700}})})),
+      feature(make_geometry(GeometryType::kPolygon,
+                            {path({{420, 340}, {540, 340}, {540, 460}, {420, 460}, {420, 340}}),
+                             path({{470, 390}, {490, 390}, {490, 410}, {470, 390}})})),
+      feature(make_geometry(GeometryType::kMultiPolygon,
+                            {path({{300, 300}, {350, 300}, {350, 350}, {300, 300}}),
+                             path({{600, 450}, {700, 450}, {650, 560}, {600, 450}})},
+                            {1, 1})),
   };
   Geometry collection;
   collection.type = GeometryType::kGeometryCollection;
-  collection.members = {make(GeometryType::kPoint, {path({{470, 410}})}),
-                        make(GeometryType::kLineString, {path({{440, 360}, {520, 440}})})};
+  collection.members = {make_geometry(GeometryType::kPoint, {path({{470, 410}})}),
+                        make_geometry(GeometryType::kLineString, {path({{440, 360}, {520, 440}})})};
   data.features.push_back(feature(collection));
   return data;
 }
@@ -125,7 +122,7 @@ TEST(MapFeatures, ADensifiedLineBendsThroughTheLensAndStaysPutBeyondItsFootprint
   ASSERT_GT(kCentre.x() - 20, footprint + 10);  // both ends beyond the footprint
   ASSERT_GT(1000 - kCentre.x(), footprint + 10);
   VectorData data;
-  data.features = {feature(make(GeometryType::kLineString, {line}))};
+  data.features = {feature(make_geometry(GeometryType::kLineString, {line}))};
 
   const MappedFeatures bent = map_features(data, map, {MapDirection::kForward, 1.0});
   const Eigen::MatrixX2d out = bent.data.features[0].geometry->paths[0];
@@ -155,24 +152,24 @@ TEST(MapFeatures, OutsideTheImageIsDroppedOrCutAsDocumented) {
   VectorData data;
   data.features = {
       // 0: a Point outside: the geometry becomes null, the properties stay.
-      feature(make(GeometryType::kPoint, {path({{-5, 10}})}), R"({"name":"gone"})"),
+      feature(make_geometry(GeometryType::kPoint, {path({{-5, 10}})}), R"({"name":"gone"})"),
       // 1: a MultiPoint keeps the points inside.
-      feature(make(GeometryType::kMultiPoint, {path({{10, 10}, {2000, 10}, {20, 30}})})),
+      feature(make_geometry(GeometryType::kMultiPoint, {path({{10, 10}, {2000, 10}, {20, 30}})})),
       // 2: a line leaving the image at y = 0 and coming back: two pieces, ending on the border.
-      feature(
-          make(GeometryType::kLineString, {path({{100, 50}, {100, -50}, {200, -50}, {200, 50}})})),
+      feature(make_geometry(GeometryType::kLineString,
+                            {path({{100, 50}, {100, -50}, {200, -50}, {200, 50}})})),
       // 3: a polygon partly outside is dropped whole; one inside is kept.
-      feature(make(GeometryType::kMultiPolygon,
-                   {path({{-10, 100}, {50, 100}, {50, 150}, {-10, 100}}),
-                    path({{100, 100}, {150, 100}, {150, 150}, {100, 100}})},
-                   {1, 1})),
+      feature(make_geometry(GeometryType::kMultiPolygon,
+                            {path({{-10, 100}, {50, 100}, {50, 150}, {-10, 100}}),
+                             path({{100, 100}, {150, 100}, {150, 150}, {100, 100}})},
+                            {1, 1})),
       // 4: a line wholly outside is dropped.
-      feature(make(GeometryType::kLineString, {path({{-100, -100}, {-50, -50}})})),
+      feature(make_geometry(GeometryType::kLineString, {path({{-100, -100}, {-50, -50}})})),
   };
   Geometry collection;
   collection.type = GeometryType::kGeometryCollection;
-  collection.members = {make(GeometryType::kPoint, {path({{-1, -1}})}),
-                        make(GeometryType::kPoint, {path({{3, 4}})})};
+  collection.members = {make_geometry(GeometryType::kPoint, {path({{-1, -1}})}),
+                        make_geometry(GeometryType::kPoint, {path({{3, 4}})})};
   data.features.push_back(feature(collection));  // 5: the member outside is removed
   const MappedFeatures m = map_features(data, map, {MapDirection::kForward, 4.0});
   const std::vector<Feature>& f = m.data.features;
@@ -199,16 +196,16 @@ TEST(MapFeatures, OutsideTheImageIsDroppedOrCutAsDocumented) {
 
   // Empty geometries have nothing to map: null too.
   VectorData empty;
-  empty.features = {feature(make(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)})),
-                    feature(make(GeometryType::kPolygon, {})),
-                    feature(make(GeometryType::kMultiLineString, {}))};
+  empty.features = {feature(make_geometry(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)})),
+                    feature(make_geometry(GeometryType::kPolygon, {})),
+                    feature(make_geometry(GeometryType::kMultiLineString, {}))};
   for (const Feature& e : map_features(empty, map).data.features)
     EXPECT_FALSE(e.geometry.has_value());
 
   // A bare geometry left with nothing is written as an empty GeometryCollection.
   VectorData bare;
   bare.root = GeoJsonRoot::kGeometry;
-  bare.features = {feature(make(GeometryType::kPoint, {path({{-5, -5}})}))};
+  bare.features = {feature(make_geometry(GeometryType::kPoint, {path({{-5, -5}})}))};
   EXPECT_EQ(geojson_text(map_features(bare, map).data),
             "{\"type\":\"GeometryCollection\",\"geometries\":[]}\n");
 }
