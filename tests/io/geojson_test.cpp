@@ -15,6 +15,7 @@
 
 #include "geolens/core/errors.h"
 #include "support/scratch_folder.h"
+#include "support/vector_data.h"
 
 namespace geolens {
 namespace {
@@ -31,14 +32,7 @@ Eigen::MatrixX2d coordinates(int n, unsigned seed, bool closed = false) {
   return P;
 }
 
-Geometry geometry(GeometryType type, std::vector<Eigen::MatrixX2d> paths,
-                  std::vector<int> rings = {}) {
-  Geometry g;
-  g.type = type;
-  g.paths = std::move(paths);
-  g.rings = std::move(rings);
-  return g;
-}
+using test::make_geometry;
 
 // Bit for bit: the same types, paths, ring counts and members.
 bool same(const Geometry& a, const Geometry& b) {
@@ -74,24 +68,25 @@ VectorData every_type() {
   VectorData data;
   unsigned seed = 1;
   auto add = [&](Geometry g) { data.features.push_back({std::move(g), "", "null"}); };
-  add(geometry(GeometryType::kPoint, {coordinates(1, seed++)}));
-  add(geometry(GeometryType::kMultiPoint, {coordinates(5, seed++)}));
-  add(geometry(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)}));
-  add(geometry(GeometryType::kLineString, {coordinates(7, seed++)}));
-  add(geometry(GeometryType::kMultiLineString, {coordinates(2, seed++), coordinates(4, seed++)}));
-  add(geometry(GeometryType::kPolygon,
-               {coordinates(6, seed++, true), coordinates(4, seed++, true)}));  // with a hole
-  add(geometry(GeometryType::kPolygon, {}));
-  add(geometry(
+  add(make_geometry(GeometryType::kPoint, {coordinates(1, seed++)}));
+  add(make_geometry(GeometryType::kMultiPoint, {coordinates(5, seed++)}));
+  add(make_geometry(GeometryType::kMultiPoint, {Eigen::MatrixX2d(0, 2)}));
+  add(make_geometry(GeometryType::kLineString, {coordinates(7, seed++)}));
+  add(make_geometry(GeometryType::kMultiLineString,
+                    {coordinates(2, seed++), coordinates(4, seed++)}));
+  add(make_geometry(GeometryType::kPolygon,
+                    {coordinates(6, seed++, true), coordinates(4, seed++, true)}));  // with a hole
+  add(make_geometry(GeometryType::kPolygon, {}));
+  add(make_geometry(
       GeometryType::kMultiPolygon,
       {coordinates(5, seed++, true), coordinates(4, seed++, true), coordinates(8, seed++, true)},
       {2, 1}));
   Geometry inner;
   inner.type = GeometryType::kGeometryCollection;
-  inner.members.push_back(geometry(GeometryType::kPoint, {coordinates(1, seed++)}));
+  inner.members.push_back(make_geometry(GeometryType::kPoint, {coordinates(1, seed++)}));
   Geometry collection;
   collection.type = GeometryType::kGeometryCollection;
-  collection.members = {geometry(GeometryType::kLineString, {coordinates(3, seed++)}), inner};
+  collection.members = {make_geometry(GeometryType::kLineString, {coordinates(3, seed++)}), inner};
   add(collection);
   data.features.push_back({std::nullopt, "\"nowhere\"", "{\"name\":\"no geometry\"}"});
   return data;
@@ -237,9 +232,10 @@ TEST_F(GeoJsonFile, ReadsAFileAndNamesItWhenItCannot) {
 
 TEST(GeoJson, WritingRefusesInvalidData) {
   VectorData data;
-  data.features.push_back({geometry(GeometryType::kLineString, {coordinates(1, 1)}), "", "null"});
+  data.features.push_back(
+      {make_geometry(GeometryType::kLineString, {coordinates(1, 1)}), "", "null"});
   EXPECT_THROW(geojson_text(data), InvalidInput);
-  data.features[0].geometry = geometry(GeometryType::kPoint, {coordinates(1, 1)});
+  data.features[0].geometry = make_geometry(GeometryType::kPoint, {coordinates(1, 1)});
   data.features[0].properties = "{not json";
   EXPECT_THROW(geojson_text(data), InvalidInput);
   data.features[0].properties = "null";
