@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "geolens/core/errors.h"
 
@@ -44,6 +46,18 @@ void write_file(const std::string& path, const void* data, size_t size) {
 
 void write_file(const std::string& path, const std::string& content) {
   write_file(path, content.data(), content.size());
+}
+
+std::string read_file(const std::string& path, const char* function, const std::string& kind) {
+  std::error_code error;
+  require(!std::filesystem::is_directory(path, error), function,
+          "'" + path + "' is a directory, not a " + kind + " file");
+  std::ifstream in(path, std::ios::binary);
+  require(bool(in), function, "cannot open '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  require(!in.bad(), function, "error while reading '" + path + "'");
+  return text.str();
 }
 
 bool same_file(const std::string& a, const std::string& b) {

@@ -1,11 +1,9 @@
 #include "geolens/io/geojson.h"
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
 
 namespace geolens {
 
@@ -246,15 +244,7 @@ VectorData parse_geojson(const std::string& text, const std::string& name) {
 }
 
 VectorData read_geojson(const std::string& path) {
-  std::error_code error;
-  require(!std::filesystem::is_directory(path, error), "read_geojson",
-          "'" + path + "' is a directory, not a GeoJSON file");
-  std::ifstream in(path, std::ios::binary);
-  require(bool(in), "read_geojson", "cannot open '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  require(!in.bad(), "read_geojson", "error while reading '" + path + "'");
-  return parse_geojson(text.str(), path);
+  return parse_geojson(read_file(path, "read_geojson", "GeoJSON"), path);
 }
 
 std::string geojson_text(const VectorData& data) {

@@ -2,14 +2,12 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
 
 namespace geolens {
 
@@ -86,15 +84,7 @@ PointTable parse_point_csv(const std::string& text, const std::string& name) {
 }
 
 PointTable read_point_csv(const std::string& path) {
-  std::error_code error;
-  require(!std::filesystem::is_directory(path, error), "read_point_csv",
-          "'" + path + "' is a directory, not a CSV file");
-  std::ifstream in(path, std::ios::binary);
-  require(bool(in), "read_point_csv", "cannot open '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  require(!in.bad(), "read_point_csv", "error while reading '" + path + "'");
-  return parse_point_csv(text.str(), path);
+  return parse_point_csv(read_file(path, "read_point_csv", "CSV"), path);
 }
 
 std::string point_csv_text(const PointTable& table) {

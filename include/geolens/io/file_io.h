@@ -1,5 +1,6 @@
 #pragma once
-// Writing files so that a failure never leaves a partial one, and the checks before writing.
+// Writing files so that a failure never leaves a partial one, the checks before writing, and
+// reading a text file whole.
 
 #include <cstddef>
 #include <string>
@@ -18,6 +19,10 @@ std::string temporary_path(const std::string& path);
 void write_file(const std::string& path, const void* data, size_t size);
 /// The same for text.
 void write_file(const std::string& path, const std::string& content);
+
+/// The bytes of the file at `path`. Throws InvalidInput, naming `function`, if `path` is a folder
+/// ("'PATH' is a directory, not a KIND file"), cannot be opened or fails while read.
+std::string read_file(const std::string& path, const char* function, const std::string& kind);
 
 /// True when `a` and `b` name the same file (or would, once created).
 bool same_file(const std::string& a, const std::string& b);
