@@ -107,8 +107,9 @@ Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) c
 }
 
 // The grid the lift is built on: the image's, or one over the solved box whose border carries
-// the sides flags so the flattening pins it; for focus lenses on circles, with vertices on every
-// focus circle and footprint edge.
+// the sides flags so the flattening pins it; for focus lenses on circles and polygons, made to
+// follow every region's boundary and footprint's edge and, unless a draft, refined where the
+// start bends.
 Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
                               bool draft) const {
   box = solved_box(lenses);
@@ -141,11 +142,10 @@ LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
 
 namespace {
 
-// The translation that takes lenses `from` to `to` (the same shapes, zooms and footprints), if
-// there is one; only circles and polygons are compared (other regions are never equal).
-std::optional<Eigen::Vector2d> translation(const std::vector<Lens>& from,
-                                           const std::vector<Lens>& to) {
-  if (from.empty() || from.size() != to.size()) return std::nullopt;
+// Whether lenses `to` are lenses `from` moved, all by one translation: the same shapes, zooms
+// and footprints (only circles and polygons are compared; other regions are never the same).
+bool moved_only(const std::vector<Lens>& from, const std::vector<Lens>& to) {
+  if (from.empty() || from.size() != to.size()) return false;
   const Eigen::Vector2d shift = to[0].region.peak() - from[0].region.peak();
   const double tolerance = 1e-9 * (1 + shift.norm());
   auto moved = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -153,20 +153,19 @@ std::optional<Eigen::Vector2d> translation(const std::vector<Lens>& from,
   };
   for (size_t k = 0; k < from.size(); ++k) {
     const Lens &a = from[k], &b = to[k];
-    if (a.zoom != b.zoom || a.footprint != b.footprint || a.profile != b.profile)
-      return std::nullopt;
+    if (a.zoom != b.zoom || a.footprint != b.footprint || a.profile != b.profile) return false;
     const std::optional<Circle> ca = a.region.circle(), cb = b.region.circle();
     const auto pa = a.region.outline(), pb = b.region.outline();
     if (ca && cb) {
-      if (ca->radius != cb->radius || !moved(ca->center, cb->center)) return std::nullopt;
+      if (ca->radius != cb->radius || !moved(ca->center, cb->center)) return false;
     } else if (pa && pb && pa->size() == pb->size()) {
       for (size_t i = 0; i < pa->size(); ++i)
-        if (!moved((*pa)[i], (*pb)[i])) return std::nullopt;
+        if (!moved((*pa)[i], (*pb)[i])) return false;
     } else {
-      return std::nullopt;
+      return false;
     }
   }
-  return shift;
+  return true;
 }
 
 }  // namespace
@@ -200,8 +199,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::ve
   const bool clear = std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
     return footprint_clear_of_border(g, width_, height_);
   });
-  if (const std::optional<Eigen::Vector2d> shift =
-          memo && clear ? translation(memo->lenses, out) : std::nullopt) {
+  if (memo && clear && moved_only(memo->lenses, out)) {
     box = solved_box(out);
     grid = memo->grid;
     grid.V.rowwise() += (box.min() - memo->box.min()).transpose();
