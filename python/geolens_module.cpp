@@ -51,15 +51,6 @@ Image render_image(const WarpMesh& warp, const Image& image, std::pair<int, int>
   return render(warp, MipPyramid(image), options);
 }
 
-ClassicLens classic_kind(const std::string& name) {
-  std::string names;
-  for (const ClassicLens kind : kClassicLenses) {
-    if (to_string(kind) == name) return kind;
-    names += (names.empty() ? "" : ", ") + to_string(kind);
-  }
-  throw InvalidInput("classic_lens: unknown lens '" + name + "', expected one of " + names);
-}
-
 }  // namespace
 
 PYBIND11_MODULE(geolens, m) {
@@ -124,7 +115,7 @@ PYBIND11_MODULE(geolens, m) {
   m.def(
       "classic_lens",
       [](const std::string& name, const py::object& lenses, int width, int height, int mesh) {
-        const ClassicLens kind = classic_kind(name);
+        const ClassicLens kind = parse_classic_lens(name);
         const std::vector<Lens> list = to_lenses(lenses, "classic_lens");
         ClassicOptions options;
         options.mesh = mesh;

@@ -26,16 +26,6 @@ std::string method_list() {
   return list;
 }
 
-namespace {
-
-ClassicLens classic_kind(const std::string& name) {
-  for (ClassicLens kind : kClassicLenses)
-    if (to_string(kind) == name) return kind;
-  throw InvalidInput("LensSolver: unknown method '" + name + "' (" + method_list() + ")");
-}
-
-}  // namespace
-
 LensSolver::LensSolver(int width, int height, const std::string& method, const LensOptions& options)
     : width_(width), height_(height), method_(method), options_(options) {
   validate(options_);
@@ -44,8 +34,9 @@ LensSolver::LensSolver(int width, int height, const std::string& method, const L
   } else {
     ClassicOptions classic;
     classic.mesh = options_.mesh;
-    worker_ = std::make_unique<LensWorker>(method_job(
-        std::make_shared<const ClassicMethod>(classic_kind(method_), classic), width_, height_));
+    worker_ = std::make_unique<LensWorker>(
+        method_job(std::make_shared<const ClassicMethod>(parse_classic_lens(method_), classic),
+                   width_, height_));
   }
 }
 

@@ -36,6 +36,15 @@ std::string to_string(ClassicLens lens) {
   return "zoom_in";
 }
 
+ClassicLens parse_classic_lens(const std::string& name) {
+  std::string names;
+  for (const ClassicLens kind : kClassicLenses) {
+    if (to_string(kind) == name) return kind;
+    names += (names.empty() ? "" : ", ") + to_string(kind);
+  }
+  throw InvalidInput("parse_classic_lens: unknown lens '" + name + "', expected one of " + names);
+}
+
 double classic_source_distance(ClassicLens lens, double u, double zoom, double a) {
   require(std::isfinite(u) && u >= 0, "classic_source_distance",
           "screen distance must be finite and >= 0, got " + std::to_string(u));

@@ -64,6 +64,8 @@ constexpr std::array<ClassicLens, 7> kClassicLenses = {
 /// "zoom_in" | "fisheye" | "fisheye_smooth" | "bifocal" | "flattop_linear" | "flattop_cosine" |
 /// "power_ring"
 std::string to_string(ClassicLens lens);
+/// The lens of that name (to_string); throws InvalidInput naming the names for any other.
+ClassicLens parse_classic_lens(const std::string& name);
 
 /// T(u): the normalized source distance shown at normalized screen distance u >= 0 by a lens of
 /// zoom z >= 1 and focus fraction a in (0, 1) (see ClassicLens). Throws InvalidInput for u < 0,
