@@ -23,7 +23,11 @@ namespace fs = std::filesystem;
 CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
   CLI::App* c = app.add_subcommand(
       "compare", "measure the geometric lens against the classic lenses at the same zoom");
-  c->add_option("input", a.input, "input image (PNG or JPEG)")->required();
+  c->add_option("input", a.input, "input: an image (PNG or JPEG) or a source file (see magnify)")
+      ->required();
+  cli::add_source_options(*c, a.source,
+                          "the frame WxH of an input without pixels of its own (SVG, vector "
+                          "map, 3D); outputs are the frame's size");
   c->add_option("-o,--output", a.output,
                 "output folder (created if missing; its parent must exist)")
       ->required();
@@ -60,7 +64,7 @@ int run_compare(const CompareArgs& a) {
   require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
           "must be >= 0, got " + std::to_string(a.heat_max));
   RunFiles files;
-  files.add_input("the input image", a.input);
+  cli::add_source_inputs(files, a.input, a.source);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
     files.add_input("the --lens " + f.kind + " file", f.path);
   files.add_folder("--output", dir.string());
@@ -71,8 +75,9 @@ int run_compare(const CompareArgs& a) {
     return path;
   };
   const LensOptions options = cli::parse_options(a.lens);
-  const Image source = load_image(a.input);
-  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
+  const SourceFile source = cli::open_input(a.input, a.source);
+  const int width = source.frame_width, height = source.frame_height;
+  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, width, height);
   const std::string title = fs::path(a.input).filename().string();
 
   if (a.sweep) {
@@ -81,8 +86,8 @@ int run_compare(const CompareArgs& a) {
                       plot = output("sweep." + a.format);
     files.check();
     const Lens& lens = lenses.front();
-    const Sweep sweep = footprint_sweep(source.width, source.height, lens, options,
-                                        sweep_ratios(lens.zoom), a.baseline_mesh);
+    const Sweep sweep =
+        footprint_sweep(width, height, lens, options, sweep_ratios(lens.zoom), a.baseline_mesh);
     // Every output to a temporary file; all renamed into place once every one is written.
     save_image(files.staged(plot), plot_sweep(sweep), a.jpeg_quality);
     write_file(files.staged(json), sweep_json(sweep));
@@ -100,20 +105,19 @@ int run_compare(const CompareArgs& a) {
                     md = output("report.md");
   files.check();
 
-  const Comparison comparison =
-      compare_lenses(source.width, source.height, lenses, options, a.baseline_mesh);
+  const Comparison comparison = compare_lenses(width, height, lenses, options, a.baseline_mesh);
   cli::warn_about_zooms(lenses, comparison.geometric);
   const double heat_max = a.heat_max > 0 ? a.heat_max : comparison_heat_max(comparison);
 
   // Every output to a temporary file; all renamed into place once every one is written.
-  const MipPyramid pyramid(source);
   for (const ComparedMethod& m : comparison.methods) {
-    const Image image = comparison_output(comparison, m, pyramid);
+    const Image image = comparison_output(comparison, m, *source.source, source.scale);
     save_image(files.staged((dir / (m.name + "." + a.format)).string()), image, a.jpeg_quality);
     save_image(files.staged((dir / (m.name + "_heatmap." + a.format)).string()),
                comparison_heatmap(m, image, heat_max), a.jpeg_quality);
   }
-  save_image(files.staged(panel), comparison_panel(comparison, pyramid, heat_max, a.tile),
+  save_image(files.staged(panel),
+             comparison_panel(comparison, *source.source, heat_max, a.tile, source.scale),
              a.jpeg_quality);
   write_file(files.staged(json), comparison_json(comparison));
   write_file(files.staged(md), comparison_markdown(comparison, title));

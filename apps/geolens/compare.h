@@ -5,11 +5,13 @@
 #include <string>
 
 #include "lens_args.h"
+#include "source_args.h"
 
 namespace geolens {
 
 struct CompareArgs {
-  std::string input, output;   ///< input image; output folder
+  std::string input, output;   ///< input image or source file; output folder
+  cli::SourceArgs source;      ///< --size (the frame of a source without pixels), --style, ...
   cli::LensArgs lens;          ///< the same lens options as `magnify`
   std::string format = "png";  ///< image files written: png or jpg
   int jpeg_quality = 92;       ///< JPEG quality for format jpg, in [1, 100]

@@ -23,13 +23,15 @@
 #include "geolens/render/render.h"
 #include "lens_args.h"
 #include "map.h"
+#include "source_args.h"
 
 using namespace geolens;
 
 namespace {
 
 struct MagnifyArgs {
-  std::string input, output, stats, export_mesh, before_after, size, overlay;
+  std::string input, output, stats, export_mesh, before_after, overlay;
+  cli::SourceArgs source;
   cli::LensArgs lens;
 };
 
@@ -43,7 +45,7 @@ int run_magnify(const MagnifyArgs& a) {
     require(is_writable_image_path(a.before_after), "--before-after",
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
   RunFiles files;
-  files.add_input("the input image", a.input);
+  cli::add_source_inputs(files, a.input, a.source);
   if (!a.overlay.empty()) files.add_input("the --overlay file", a.overlay);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
     files.add_input("the --lens " + f.kind + " file", f.path);
@@ -68,13 +70,13 @@ int run_magnify(const MagnifyArgs& a) {
   lap();
   const std::optional<VectorData> overlay =
       a.overlay.empty() ? std::nullopt : std::optional(read_geojson(a.overlay));
-  const Image source = load_image(a.input);
-  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source);
-  const auto [width, height] =
-      a.size.empty() ? std::pair{source.width, source.height} : cli::parse_size(a.size);
+  const SourceFile source = cli::open_input(a.input, a.source);
+  const int frame_width = source.frame_width, frame_height = source.frame_height;
+  const std::vector<Lens> lenses = cli::parse_lenses(a.lens, frame_width, frame_height);
+  const auto [width, height] = cli::output_size(source, a.source);
   timings.load = lap();
 
-  const GeometricLens lens(source.width, source.height, options);
+  const GeometricLens lens(frame_width, frame_height, options);
   const LensResult result = lens.solve(lenses);
   lap();
   cli::warn_about_zooms(lenses, result);
@@ -86,33 +88,35 @@ int run_magnify(const MagnifyArgs& a) {
   }
   timings.measure = lap();
 
-  const MipPyramid pyramid(source);
   RenderOptions render_options;
   render_options.width = width;
   render_options.height = height;
   render_options.threads = options.flatten.threads;
-  Image output = render(result.warp, pyramid, render_options);
+  render_options.source_scale = source.scale;
+  // A warp rendered, then what goes over it unwarped: the source's own overlay (a vector map's
+  // labels) and the --overlay features, mapped through the warp as rendered (grey made RGB).
+  auto picture = [&](const WarpMesh& warp) {
+    Image image = render(warp, *source.source, render_options);
+    if (!source.overlay && !overlay) return image;
+    if (image.channels < 3) image = to_rgb(image);
+    const WarpMap map = framed_warp_map(warp, width, height);
+    if (source.overlay) source.overlay(image, map);
+    if (overlay) {
+      const MappedFeatures mapped = map_features(*overlay, map);
+      if (&warp == &result.warp)
+        warn_about_losses(mapped.losses, "the overlay", "the source image");
+      draw_overlay(image, mapped.data);
+    }
+    return image;
+  };
+  const Image output = picture(result.warp);
   Image before;
   if (!a.before_after.empty()) {
-    before = render(identity_warp(source.width, source.height), pyramid, render_options);
+    before = picture(identity_warp(frame_width, frame_height));
     std::vector<Region> regions;
     for (const Lens& l : lenses) regions.push_back(l.region);
-    outline_regions(before, regions, Eigen::Vector2d::Zero(), double(width) / source.width,
-                    double(height) / source.height);
-  }
-  if (overlay) {
-    // The features mapped through the warp as rendered, drawn in colour (grey made RGB).
-    const MappedFeatures mapped =
-        map_features(*overlay, framed_warp_map(result.warp, width, height));
-    warn_about_losses(mapped.losses, "the overlay", "the source image");
-    if (output.channels < 3) output = to_rgb(output);
-    draw_overlay(output, mapped.data);
-    if (!a.before_after.empty()) {
-      const WarpMap identity =
-          framed_warp_map(identity_warp(source.width, source.height), width, height);
-      if (before.channels < 3) before = to_rgb(before);
-      draw_overlay(before, map_features(*overlay, identity).data);
-    }
+    outline_regions(before, regions, Eigen::Vector2d::Zero(), double(width) / frame_width,
+                    double(height) / frame_height);
   }
   timings.render = lap();
 
@@ -127,7 +131,10 @@ int run_magnify(const MagnifyArgs& a) {
   timings.save = lap();
   if (!a.stats.empty()) {
     timings.total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    write_file(files.staged(a.stats), run_stats_json(lenses, options, result, distortion, timings));
+    const RunSource run_source{source.kind, frame_width, frame_height, source.scale,
+                               source.counters ? source.counters() : RunSource{}.counters};
+    write_file(files.staged(a.stats),
+               run_stats_json(lenses, options, result, distortion, timings, run_source));
   }
   files.commit();
   return 0;
@@ -141,10 +148,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   MagnifyArgs a;
   CLI::App* magnify = app.add_subcommand("magnify", "magnify lens regions of an image");
-  magnify->add_option("input", a.input, "input image (PNG or JPEG)")->required();
+  magnify
+      ->add_option("input", a.input,
+                   "input: an image (PNG or JPEG) or a source file (a tile folder, .levels, "
+                   ".svg, .geojson, .obj, .ply, .nii, .nii.gz, .nrrd)")
+      ->required();
   magnify->add_option("-o,--output", a.output, "output image (.png, .jpg)")->required();
   cli::add_lens_options(*magnify, a.lens);
-  magnify->add_option("--size", a.size, "output size WxH (default: the input's)");
+  cli::add_source_options(*magnify, a.source,
+                          "output size WxH (default: the input's frame); frames an input without "
+                          "pixels of its own (SVG, vector map, 3D)");
   magnify->add_option("--stats", a.stats, "write run statistics as JSON");
   magnify->add_option("--export-mesh", a.export_mesh,
                       "write PREFIX_3d.obj (lifted) and PREFIX_flat.obj (flattened)");

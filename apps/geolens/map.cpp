@@ -16,6 +16,7 @@
 #include "geolens/io/run_files.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
+#include "source_args.h"
 
 namespace geolens {
 
@@ -81,7 +82,8 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
       ->required();
   c->add_option("-o,--output", a.output, "output file (default: standard output), never the input");
   cli::add_lens_options(*c, a.lens);
-  c->add_option("--image", a.image, "the source image the lenses are placed on (its size)");
+  c->add_option("--image", a.image,
+                "the source image (or source file) the lenses are placed on (its size)");
   c->add_option("--size", a.size,
                 "output size WxH, as magnify's (default: the source's); without --image also "
                 "the source's size");
@@ -92,17 +94,6 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
       ->capture_default_str();
   c->add_option("--format", a.format, "csv or geojson (default: from the file extension)");
   return c;
-}
-
-WarpMap framed_warp_map(const WarpMesh& warp, int width, int height) {
-  require(warp.screen_width > 0 && warp.screen_height > 0 && width > 0 && height > 0,
-          "framed_warp_map", "the warp's frame and the output size must be positive");
-  WarpMesh framed = warp;
-  framed.screen.col(0) *= double(width) / warp.screen_width;
-  framed.screen.col(1) *= double(height) / warp.screen_height;
-  framed.screen_width = width;
-  framed.screen_height = height;
-  return WarpMap(std::move(framed));
 }
 
 void warn_about_losses(const MapLosses& losses, const std::string& what, const std::string& area) {
@@ -136,8 +127,12 @@ int run_map(const MapArgs& a) {
   std::pair<int, int> source_size, output_size;
   if (!a.size.empty()) output_size = cli::parse_size(a.size);
   if (!a.image.empty()) {
-    const Image image = load_image(a.image);
-    source_size = {image.width, image.height};
+    // Any source file: its frame is what the lenses are placed on (--size frames one without
+    // pixels of its own).
+    cli::SourceArgs source_args;
+    source_args.size = a.size;
+    const SourceFile image = cli::open_input(a.image, source_args);
+    source_size = {image.frame_width, image.frame_height};
     if (a.size.empty()) output_size = source_size;
   } else {
     source_size = output_size;

@@ -34,11 +34,6 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& args);
 /// lenses are solved.
 int run_map(const MapArgs& args);
 
-/// The map of `warp` with its screen coordinates scaled from warp.screen_width x
-/// warp.screen_height to width x height pixels, as render() scales them: so mapped features land
-/// on the image rendered at that size.
-WarpMap framed_warp_map(const WarpMesh& warp, int width, int height);
-
 /// Prints one warning line on stderr if `losses` dropped or cut anything: `what` ("the overlay")
 /// is partly outside `area` ("the source image"), with the counts.
 void warn_about_losses(const MapLosses& losses, const std::string& what, const std::string& area);

@@ -86,7 +86,7 @@ int run(const Args& a) {
   options.model = parse_lens_model(a.model);
   Viewer viewer(options, a.method);
   viewer.set_split(a.split);
-  if (!a.image.empty()) viewer.open(load_image(a.image), a.image);
+  if (!a.image.empty()) viewer.open_file(a.image);
   for (const std::string& spec : a.lenses) {
     require(viewer.has_image(), "--lens", "needs an IMAGE");
     try {

@@ -14,7 +14,11 @@
 #include "geolens/lens/lens_spec.h"
 #include "geolens/lens/lift.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/render/annotate.h"
 #include "geolens/render/heatmap.h"
+#include "geolens/render/render.h"
+#include "geolens/source/source_file.h"
+#include "geolens/warp/warp_map.h"
 
 namespace geolens::view {
 
@@ -94,9 +98,28 @@ void Viewer::open(Image image, const std::string& path) {
   fit_view();
 }
 
+void Viewer::open_file(const std::string& path) {
+  const SourceFile file = open_source(path);
+  if (const auto* image = dynamic_cast<const MipPyramid*>(file.source.get())) {
+    open(image->level(0), path);  // the pixels as they are, not resampled by the renderer
+    return;
+  }
+  RenderOptions options;
+  options.width = file.frame_width;
+  options.height = file.frame_height;
+  options.source_scale = file.scale;
+  const WarpMesh identity = identity_warp(file.frame_width, file.frame_height);
+  Image frame = render(identity, *file.source, options);
+  if (file.overlay) {
+    if (frame.channels < 3) frame = to_rgb(frame);
+    file.overlay(frame, framed_warp_map(identity, file.frame_width, file.frame_height));
+  }
+  open(std::move(frame), path);
+}
+
 std::string Viewer::try_open(const std::string& path) {
   try {
-    open(load_image(path), path);
+    open_file(path);
     message.clear();
     return "";
   } catch (const std::exception& e) {

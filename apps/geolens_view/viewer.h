@@ -59,8 +59,12 @@ class Viewer {
   /// Shows `image` (read from `path`); the lenses that no longer fit are dropped. Throws
   /// InvalidInput for an empty image.
   void open(Image image, const std::string& path);
-  /// Reads `path` and shows it; on failure keeps the current image and returns the one-line
-  /// reason (empty on success). For the panel's Open field and a file dropped on the window.
+  /// Reads `path`, an image or any source file open_source reads (source/source_file.h; with its
+  /// default frame, its whole frame rendered at zoom 1 with its overlay), and shows it. Throws
+  /// InvalidInput when it cannot be read.
+  void open_file(const std::string& path);
+  /// open_file(path); on failure keeps the current image and returns the one-line reason (empty
+  /// on success). For the panel's Open field and a file dropped on the window.
   std::string try_open(const std::string& path);
   bool has_image() const { return image_.width > 0; }
   const Image& image() const { return image_; }

@@ -31,11 +31,12 @@ void require_panel_tile(int tile, const char* function) {
 }
 
 Image comparison_output(const Comparison& comparison, const ComparedMethod& method,
-                        const MipPyramid& pyramid) {
+                        const Source& source, double source_scale) {
   RenderOptions options;
+  options.source_scale = source_scale;
   options.width = comparison.width;
   options.height = comparison.height;
-  return to_rgb(render(method.warp, pyramid, options));
+  return to_rgb(render(method.warp, source, options));
 }
 
 Image comparison_heatmap(const ComparedMethod& method, const Image& output, double heat_max) {
@@ -44,8 +45,8 @@ Image comparison_heatmap(const ComparedMethod& method, const Image& output, doub
       heat_max, method.name + ": shape distortion s1/s2 - 1");
 }
 
-Image comparison_panel(const Comparison& comparison, const MipPyramid& pyramid, double heat_max,
-                       int tile) {
+Image comparison_panel(const Comparison& comparison, const Source& source, double heat_max,
+                       int tile, double source_scale) {
   require_panel_tile(tile, "comparison_panel");
   const std::vector<ComparedMethod>& methods = comparison.methods;
   Eigen::AlignedBox2d box;
@@ -63,10 +64,11 @@ Image comparison_panel(const Comparison& comparison, const MipPyramid& pyramid, 
   Image panel(columns * cell_width + gap, rows * cell_height + gap, 3, 255);
   RenderOptions options;
   options.width = options.height = tile;
+  options.source_scale = source_scale;
   const std::array<uint8_t, 3> ink = {20, 20, 20};
 
   const WarpMesh identity = identity_warp(comparison.width, comparison.height);
-  Image input = to_rgb(render(framed(identity, origin, side, tile), pyramid, options));
+  Image input = to_rgb(render(framed(identity, origin, side, tile), source, options));
   std::vector<Region> circles;
   for (const CircleLens& lens : comparison.targets)
     circles.push_back(Region::circle(lens.center, lens.radius));
@@ -105,7 +107,7 @@ Image comparison_panel(const Comparison& comparison, const MipPyramid& pyramid, 
       notes += (notes.empty() ? "" : ", ") + std::to_string(m.regions.overall.flipped) + " flipped";
     draw_text(panel, left, top + 3 * line, notes, scale, ink);
     const WarpMesh warp = framed(m.warp, origin, side, tile);
-    const Image image = to_rgb(render(warp, pyramid, options));
+    const Image image = to_rgb(render(warp, source, options));
     paste(panel, image, left, top + label_height);
     paste(panel, heatmap(warp, m.measures.conformal, m.measures.flipped, image, heat_max), left,
           top + label_height + tile + gap);

@@ -10,7 +10,7 @@ namespace geolens {
 
 std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& options,
                            const LensResult& result, const DistortionSummary& summary,
-                           const RunTimings& timings) {
+                           const RunTimings& timings, const RunSource& source) {
   nlohmann::json stats;
   stats["vertices"] = result.warp.source.rows();
   stats["triangles"] = result.warp.F.rows();
@@ -59,6 +59,13 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
                          {"save", timings.save},
                          {"other", std::max(0.0, timings.total - parts)},
                          {"total", std::max(timings.total, parts)}};
+  if (!source.kind.empty()) {
+    nlohmann::json& entry = stats["source"];
+    entry = {{"kind", source.kind},
+             {"frame", {source.frame_width, source.frame_height}},
+             {"scale", source.scale}};
+    for (const auto& [name, value] : source.counters) entry[name] = value;
+  }
   return stats.dump(2) + "\n";
 }
 

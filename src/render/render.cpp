@@ -235,16 +235,16 @@ TexelMap texel_map(const double (&J)[2][2], double source_x, double source_y, do
 }
 
 /// Sets up mesh triangle `f` for drawing into a width x height output.
-Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, int width, int height,
-                int levels) {
+Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, double source_scale,
+                int width, int height, int levels) {
   Triangle t;
   double sx[3], sy[3];
   for (int i = 0; i < 3; ++i) {
     const int v = mesh.F(f, i);
     t.x[i] = mesh.screen(v, 0) * scale_x;
     t.y[i] = mesh.screen(v, 1) * scale_y;
-    sx[i] = mesh.source(v, 0);
-    sy[i] = mesh.source(v, 1);
+    sx[i] = mesh.source(v, 0) * source_scale;
+    sy[i] = mesh.source(v, 1) * source_scale;
   }
   const double x_min = std::min({t.x[0], t.x[1], t.x[2]}),
                x_max = std::max({t.x[0], t.x[1], t.x[2]});
@@ -287,6 +287,8 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
           "height must be in [1, " + std::to_string(kMaxOutputSide) + "], got " +
               std::to_string(options.height));
   require(options.threads >= 0, fn, "threads must be >= 0, got " + std::to_string(options.threads));
+  require(std::isfinite(options.source_scale) && options.source_scale > 0, fn,
+          "source_scale must be finite and > 0, got " + std::to_string(options.source_scale));
   require(mesh.screen_width > 0 && mesh.screen_height > 0, fn,
           "mesh.screen_width and mesh.screen_height must be > 0, got " +
               std::to_string(mesh.screen_width) + " x " + std::to_string(mesh.screen_height));
@@ -349,7 +351,8 @@ Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& op
     const int chunk = int(i);
     const int end = std::min(triangle_count, (chunk + 1) * kChunk);
     for (int f = chunk * kChunk; f < end; ++f)
-      triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, width, height, source.levels());
+      triangles[size_t(f)] =
+          set_up(mesh, f, scale_x, scale_y, options.source_scale, width, height, source.levels());
   });
 
   Image out(width, height, C);

@@ -226,4 +226,15 @@ Eigen::Index WarpMap::screen_triangle(const Eigen::Vector2d& q) const {
 
 const WarpMesh& WarpMap::mesh() const { return impl_->mesh; }
 
+WarpMap framed_warp_map(const WarpMesh& warp, int width, int height) {
+  require(warp.screen_width > 0 && warp.screen_height > 0 && width > 0 && height > 0,
+          "framed_warp_map", "the warp's frame and the output size must be positive");
+  WarpMesh framed = warp;
+  framed.screen.col(0) *= double(width) / warp.screen_width;
+  framed.screen.col(1) *= double(height) / warp.screen_height;
+  framed.screen_width = width;
+  framed.screen_height = height;
+  return WarpMap(std::move(framed));
+}
+
 }  // namespace geolens

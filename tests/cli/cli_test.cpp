@@ -127,11 +127,11 @@ TEST_F(Cli, RefusesOutputsThatClashBeforeAnyWork) {
     expect_refused("magnify in.png" + lens + " -o out.png --export-mesh m --stats m_3d.obj",
                    "--stats: 'm_3d.obj' is the same file as --export-mesh 'm_3d.obj'");
     expect_refused("magnify ./in.png" + lens + " -o in.png",
-                   "--output: 'in.png' would overwrite the input image './in.png'");
+                   "--output: 'in.png' would overwrite the input './in.png'");
     fs::current_path(cwd);
   }
   expect_refused("magnify " + in + " -o " + path("./in.png") + lens,
-                 "--output: '" + path("./in.png") + "' would overwrite the input image");
+                 "--output: '" + path("./in.png") + "' would overwrite the input");
   std::ofstream(path("poly.txt")) << "100 60\n160 60\n160 130\n100 130\n";
   std::ofstream(path("m_flat.obj")) << "100 60\n160 60\n160 130\n100 130\n";
   Image mask(256, 192, 1, 0);
@@ -181,6 +181,12 @@ TEST_F(Cli, SuccessfulRunWritesEveryOutput) {
     EXPECT_GT(fs::file_size(path(name)), 0u) << name;
   for (const auto& entry : fs::recursive_directory_iterator(dir_))
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+  // What the run read: an image, framed at its size, scale 1.
+  std::ifstream in(path("stats.json"));
+  const nlohmann::json source = nlohmann::json::parse(in).at("source");
+  EXPECT_EQ(source.at("kind"), "image");
+  EXPECT_EQ(source.at("frame"), nlohmann::json({256, 192}));
+  EXPECT_EQ(source.at("scale").get<double>(), 1.0);
 }
 
 // A thresholded photograph's object (the cup rim, thin and wide parts) magnified as a whole.

@@ -452,6 +452,31 @@ TEST(RenderTest, ResultDoesNotDependOnTheThreadCountAndLaterTrianglesDrawOnTop) 
   EXPECT_GT(covered, 1000);
 }
 
+TEST(RenderTest, SourceScaleSamplesAFinerSourceAsIfTheMeshWereScaled) {
+  // A 2x magnification of a 16 x 16 frame drawn from a source 4 times finer (64 x 64): with
+  // source_scale 4 the mesh's frame coordinates reach the fine texels, exactly as a mesh with
+  // its source coordinates multiplied by 4 does; and the magnified part samples the fine level,
+  // not a coarse level upsampled.
+  const Image fine = geolens::test::pattern(64, 64, 3);
+  const MipPyramid pyramid(fine);
+  const auto magnify = [](const Eigen::Vector2d& s) { return Eigen::Vector2d(2 * s); };
+  const WarpMesh frame = geolens::test::grid_warp(5, 5, 16, 16, magnify, 32, 32);
+  WarpMesh scaled = frame;
+  scaled.source *= 4;
+  RenderOptions options = options_for(32, 32);
+  const Image direct = geolens::render(scaled, pyramid, options);
+  options.source_scale = 4;
+  const Image through_scale = geolens::render(frame, pyramid, options);
+  EXPECT_EQ(max_abs_diff(through_scale, direct), 0);
+  // Each output pixel covers 2 x 2 fine texels: level 1 of the pyramid, not level 2 (a frame
+  // texel) magnified, which a render without the scale shows.
+  const Image level1 = pyramid.level(1);
+  EXPECT_LT(mean_abs_diff(through_scale, level1), 1.0);
+  options.source_scale = 1;
+  const Image coarse = geolens::render(frame, MipPyramid(pyramid.level(2)), options);
+  EXPECT_GT(mean_abs_diff(coarse, level1), 4.0);
+}
+
 TEST(RenderTest, RejectsInvalidInputNamingRender) {
   const MipPyramid pyramid(Image(4, 4, 1));
   const WarpMesh mesh = identity_mesh(4, 4, 3, 3);
@@ -466,6 +491,11 @@ TEST(RenderTest, RejectsInvalidInputNamingRender) {
   expect_invalid(mesh, options_for(0, 4));
   expect_invalid(mesh, options_for(4, -1));
   expect_invalid(mesh, options_for(4, 4, -1));
+  for (const double scale : {0.0, -1.0, std::numeric_limits<double>::infinity()}) {
+    RenderOptions o = options_for(4, 4);
+    o.source_scale = scale;
+    expect_invalid(mesh, o);
+  }
   WarpMesh m = mesh;
   m.screen_width = 0;
   expect_invalid(m, options_for(4, 4));

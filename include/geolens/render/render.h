@@ -17,6 +17,10 @@ struct RenderOptions {
   int width = 0;                                             ///< output width, pixels (> 0)
   int height = 0;                                            ///< output height, pixels (> 0)
   std::array<uint8_t, 4> background = {255, 255, 255, 255};  ///< for pixels no triangle covers
+  /// Texels of source level 0 per unit of the mesh's source coordinates, > 0: 1 when the mesh is
+  /// in source pixels; SourceFile::scale for a source finer than the frame the lens was solved in
+  /// (source/source_file.h), so a magnified triangle samples the finer levels.
+  double source_scale = 1;
   /// threads of the pool render() starts for the call when `pool` is null, the calling thread
   /// included: 0 = hardware concurrency, >= 0
   int threads = 0;

@@ -90,4 +90,10 @@ class WarpMap {
   std::shared_ptr<const Impl> impl_;
 };
 
+/// The map of `warp` with its screen coordinates scaled from warp.screen_width x
+/// warp.screen_height to width x height pixels, as render() scales them: so mapped features land
+/// on the image rendered at that size. Throws InvalidInput naming "framed_warp_map" unless the
+/// warp's frame and width, height are positive.
+WarpMap framed_warp_map(const WarpMesh& warp, int width, int height);
+
 }  // namespace geolens

@@ -1,0 +1,35 @@
+#include "source_args.h"
+
+#include "lens_args.h"
+
+namespace geolens::cli {
+
+void add_source_options(CLI::App& command, SourceArgs& a, const std::string& size_help) {
+  command.add_option("--size", a.size, size_help);
+  command.add_option("--style", a.style, "style file (JSON) of a vector map input");
+  command.add_option("--view", a.view, "camera of a 3D input: AZ,EL in degrees");
+  command.add_option("--transfer", a.transfer,
+                     "transfer function of a volume input: a preset (ct, mri) or a table file");
+}
+
+void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
+  files.add_input("the input", input);
+  if (!a.style.empty()) files.add_input("the --style file", a.style);
+  // A --transfer that names a file is read too; a preset name is no file and clashes with none.
+  if (!a.transfer.empty()) files.add_input("the --transfer file", a.transfer);
+}
+
+SourceFile open_input(const std::string& input, const SourceArgs& a) {
+  SourceFileOptions options;
+  if (!a.size.empty()) std::tie(options.width, options.height) = parse_size(a.size);
+  options.style = a.style;
+  options.view = a.view;
+  options.transfer = a.transfer;
+  return open_source(input, options);
+}
+
+std::pair<int, int> output_size(const SourceFile& file, const SourceArgs& a) {
+  return a.size.empty() ? std::pair{file.frame_width, file.frame_height} : parse_size(a.size);
+}
+
+}  // namespace geolens::cli
