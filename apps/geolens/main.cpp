@@ -93,6 +93,7 @@ int run_magnify(const MagnifyArgs& a) {
   render_options.height = height;
   render_options.threads = options.flatten.threads;
   render_options.source_scale = source.scale;
+  render_options.level_band = source.level_band;
   // A warp rendered, then what goes over it unwarped: the source's own overlay (a vector map's
   // labels) and the --overlay features, mapped through the warp as rendered (grey made RGB).
   auto picture = [&](const WarpMesh& warp) {
@@ -110,6 +111,9 @@ int run_magnify(const MagnifyArgs& a) {
     return image;
   };
   const Image output = picture(result.warp);
+  // The source's counters for the output (the before picture reads and draws more).
+  std::vector<std::pair<std::string, double>> counters;
+  if (source.counters) counters = source.counters();
   Image before;
   if (!a.before_after.empty()) {
     before = picture(identity_warp(frame_width, frame_height));
@@ -131,8 +135,7 @@ int run_magnify(const MagnifyArgs& a) {
   timings.save = lap();
   if (!a.stats.empty()) {
     timings.total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    const RunSource run_source{source.kind, frame_width, frame_height, source.scale,
-                               source.counters ? source.counters() : RunSource{}.counters};
+    const RunSource run_source{source.kind, frame_width, frame_height, source.scale, counters};
     write_file(files.staged(a.stats),
                run_stats_json(lenses, options, result, distortion, timings, run_source));
   }

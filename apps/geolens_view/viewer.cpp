@@ -108,6 +108,7 @@ void Viewer::open_file(const std::string& path) {
   options.width = file.frame_width;
   options.height = file.frame_height;
   options.source_scale = file.scale;
+  options.level_band = file.level_band;
   const WarpMesh identity = identity_warp(file.frame_width, file.frame_height);
   Image frame = render(identity, *file.source, options);
   if (file.overlay) {

@@ -236,7 +236,7 @@ TexelMap texel_map(const double (&J)[2][2], double source_x, double source_y, do
 
 /// Sets up mesh triangle `f` for drawing into a width x height output.
 Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, double source_scale,
-                int width, int height, int levels) {
+                double band, int width, int height, int levels) {
   Triangle t;
   double sx[3], sy[3];
   for (int i = 0; i < 3; ++i) {
@@ -266,7 +266,9 @@ Triangle set_up(const WarpMesh& mesh, int f, double scale_x, double scale_y, dou
                               std::hypot(J[0][0] - J[1][1], J[1][0] + J[0][1]));
   const double lod = sigma > 1 ? std::min(std::log2(sigma), double(levels - 1)) : 0.0;  // NaN: 0
   t.level = int(lod);
-  t.blend = int(std::lround((lod - t.level) * 256));  // the blend has 8 bits, like the weights
+  // The weight of the coarser level: across the band about the midway point between the two.
+  const double blend = std::clamp((lod - t.level - 0.5) / band + 0.5, 0.0, 1.0);
+  t.blend = int(std::lround(blend * 256));  // the blend has 8 bits, like the weights
   if (t.blend == 256) {
     t.blend = 0;
     ++t.level;
@@ -289,6 +291,8 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
   require(options.threads >= 0, fn, "threads must be >= 0, got " + std::to_string(options.threads));
   require(std::isfinite(options.source_scale) && options.source_scale > 0, fn,
           "source_scale must be finite and > 0, got " + std::to_string(options.source_scale));
+  require(options.level_band > 0 && options.level_band <= 1, fn,
+          "level_band must be in (0, 1], got " + std::to_string(options.level_band));
   require(mesh.screen_width > 0 && mesh.screen_height > 0, fn,
           "mesh.screen_width and mesh.screen_height must be > 0, got " +
               std::to_string(mesh.screen_width) + " x " + std::to_string(mesh.screen_height));
@@ -351,8 +355,8 @@ Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& op
     const int chunk = int(i);
     const int end = std::min(triangle_count, (chunk + 1) * kChunk);
     for (int f = chunk * kChunk; f < end; ++f)
-      triangles[size_t(f)] =
-          set_up(mesh, f, scale_x, scale_y, options.source_scale, width, height, source.levels());
+      triangles[size_t(f)] = set_up(mesh, f, scale_x, scale_y, options.source_scale,
+                                    options.level_band, width, height, source.levels());
   });
 
   Image out(width, height, C);

@@ -477,6 +477,41 @@ TEST(RenderTest, SourceScaleSamplesAFinerSourceAsIfTheMeshWereScaled) {
   EXPECT_GT(mean_abs_diff(coarse, level1), 4.0);
 }
 
+// Level l of this source is the constant 40 l, so a pixel's value tells which levels it blends.
+class LevelShade : public geolens::Source {
+ public:
+  explicit LevelShade(int side) : Source(side, side, 1, "LevelShade") {}
+
+ private:
+  geolens::TexelRegion fetch_inside(int level, int x, int y, int width, int height) const override {
+    auto texels =
+        std::make_shared<std::vector<uint8_t>>(size_t(width) * size_t(height), uint8_t(40 * level));
+    return {texels->data(), size_t(width), x, y, width, height, 1, texels};
+  }
+};
+
+TEST(RenderTest, LevelBandBlendsNeighbouringLevelsOnlyAboutTheirMidpoint) {
+  const LevelShade source(256);
+  // A 256 px source minified to 256 / 2^lod: every pixel at that level of detail.
+  auto shade = [&](double lod, double band) {
+    const int side = int(std::lround(256 / std::exp2(lod)));
+    const WarpMesh mesh = geolens::test::grid_warp(
+        3, 3, 256, 256, [&](const Eigen::Vector2d& s) { return Eigen::Vector2d(s * side / 256); },
+        side, side);
+    RenderOptions options = options_for(side, side);
+    options.level_band = band;
+    return double(geolens::render(mesh, source, options).at(side / 2, side / 2)[0]);
+  };
+  // Trilinear (band 1): level 1 blended with level 2 by the fraction past level 1.
+  EXPECT_NEAR(shade(1.3, 1), 40 + 0.3 * 40, 1.0);
+  EXPECT_NEAR(shade(1.6, 1), 40 + 0.6 * 40, 1.0);
+  // A quarter-level band: one level alone outside 1.375 - 1.625, blended inside it.
+  EXPECT_NEAR(shade(1.3, 0.25), 40, 1.0);
+  EXPECT_NEAR(shade(1.5, 0.25), 60, 1.0);
+  EXPECT_NEAR(shade(1.6, 0.25), 40 + 0.9 * 40, 1.0);
+  EXPECT_NEAR(shade(1.7, 0.25), 80, 1.0);
+}
+
 TEST(RenderTest, RejectsInvalidInputNamingRender) {
   const MipPyramid pyramid(Image(4, 4, 1));
   const WarpMesh mesh = identity_mesh(4, 4, 3, 3);
@@ -494,6 +529,11 @@ TEST(RenderTest, RejectsInvalidInputNamingRender) {
   for (const double scale : {0.0, -1.0, std::numeric_limits<double>::infinity()}) {
     RenderOptions o = options_for(4, 4);
     o.source_scale = scale;
+    expect_invalid(mesh, o);
+  }
+  for (const double band : {0.0, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    RenderOptions o = options_for(4, 4);
+    o.level_band = band;
     expect_invalid(mesh, o);
   }
   WarpMesh m = mesh;

@@ -21,6 +21,12 @@ struct RenderOptions {
   /// in source pixels; SourceFile::scale for a source finer than the frame the lens was solved in
   /// (source/source_file.h), so a magnified triangle samples the finer levels.
   double source_scale = 1;
+  /// The width, in levels (octaves of magnification), of the band across which two neighbouring
+  /// levels are blended, in (0, 1]: 1 blends all the way from one level to the next (trilinear,
+  /// as texture hardware does: best for photographs); a narrower band shows one level alone
+  /// except within band / 2 of the midway point, so text and lines that a level draws at its own
+  /// size (map labels, a web map's tiles) show twice only there (SourceFile::level_band).
+  double level_band = 1;
   /// threads of the pool render() starts for the call when `pool` is null, the calling thread
   /// included: 0 = hardware concurrency, >= 0
   int threads = 0;

@@ -36,7 +36,11 @@ struct SourceFile {
   std::shared_ptr<const Source> source;   ///< never null
   int frame_width = 0, frame_height = 0;  ///< >= 1
   double scale = 1;                       ///< > 0; 1 for a plain image
-  std::string kind;                       ///< "image", "level list", "tiles", "svg", ...
+  /// RenderOptions::level_band to render it with: 1 (trilinear) where a level is the same picture
+  /// at another resolution; narrower where each level is drawn on its own (a web map's tiles, a
+  /// vector map), whose labels and line widths would otherwise show twice where levels blend.
+  double level_band = 1;
+  std::string kind;  ///< "image", "level list", "tiles", "svg", ...
   /// Numbers a run reports in --stats after rendering (e.g. {"missing_tiles", 3}); may be empty.
   std::function<std::vector<std::pair<std::string, double>>()> counters;
   /// Drawn over an output after rendering, in its pixels, given the warp it was rendered through
