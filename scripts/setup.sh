@@ -8,12 +8,19 @@
 # which xvfb-run needs and xvfb only recommends) with Mesa's software OpenGL (libgl1-mesa-dri).
 # The Python module: pybind11 and Python's headers build it, numpy and pytest test it (with
 # Debian's /usr/bin/python3, which has them, whatever python3 comes first on PATH).
+# 3D sources: tinyobjloader (OBJ meshes), libnifti2-dev (NIfTI volumes; brings niftiio and
+# znzlib), zlib (gzip-encoded volumes).
+# SVG and vector-map sources: librsvg (rasterizes SVG per tile), cairo (draws maps and labels
+# anti-aliased). Not installed here: libmagics++-data (170 MB), whose Natural Earth shapefiles
+# examples/europe.geojson was converted from once (scripts/natural_earth_to_geojson.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev
           libspng-dev libjpeg62-turbo-dev libstb-dev libgtest-dev libbenchmark-dev
           libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev xvfb xauth libgl1-mesa-dri
-          pybind11-dev python3-dev python3-numpy python3-pytest)
+          pybind11-dev python3-dev python3-numpy python3-pytest
+          libtinyobjloader-dev libnifti2-dev zlib1g-dev
+          librsvg2-dev libcairo2-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

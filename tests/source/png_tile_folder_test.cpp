@@ -10,6 +10,7 @@
 #include "geolens/source/mip_pyramid.h"
 #include "geolens/source/tiled_source.h"
 #include "support/scratch_folder.h"
+#include "support/test_data.h"
 
 using geolens::Image;
 using geolens::InvalidInput;
@@ -27,13 +28,6 @@ Image pattern(int width, int height) {
   return image;
 }
 
-Image crop(const Image& image, int x, int y, int width, int height) {
-  Image out(width, height, image.channels);
-  for (int j = 0; j < height; ++j)
-    std::copy(image.at(x, y + j), image.at(x + width, y + j), out.at(0, j));
-  return out;
-}
-
 /// Writes the level-0 tiles of `image` (tile_size x tile_size) to `dir` as png_tile_folder
 /// reads them.
 void write_level0(const Image& image, int tile_size, const std::string& dir) {
@@ -42,8 +36,8 @@ void write_level0(const Image& image, int tile_size, const std::string& dir) {
     for (int tx = 0; tx * tile_size < image.width; ++tx) {
       const int x = tx * tile_size, y = ty * tile_size;
       geolens::save_image(geolens::png_tile_path(dir, 0, tx, ty),
-                          crop(image, x, y, std::min(tile_size, image.width - x),
-                               std::min(tile_size, image.height - y)));
+                          geolens::test::crop(image, x, y, std::min(tile_size, image.width - x),
+                                              std::min(tile_size, image.height - y)));
     }
 }
 

@@ -40,4 +40,26 @@ Image pattern(int width, int height, int channels) {
   return image;
 }
 
+Image crop(const Image& image, int x, int y, int width, int height) {
+  Image out(width, height, image.channels);
+  for (int j = 0; j < height; ++j)
+    std::copy(image.at(x, y + j), image.at(x + width, y + j), out.at(0, j));
+  return out;
+}
+
+WarpMesh magnified_patch(int side, const Eigen::Vector2d& source_min, double source_side,
+                         const Eigen::Vector2d& screen_min, double screen_side) {
+  const WarpMesh identity = identity_warp(side, side);
+  WarpMesh mesh = identity;
+  mesh.F.conservativeResize(4, 3);
+  mesh.F.bottomRows(2) = identity.F.array() + 4;
+  mesh.source.conservativeResize(8, 2);
+  mesh.screen.conservativeResize(8, 2);
+  mesh.source.bottomRows(4) =
+      (identity.source * (source_side / side)).rowwise() + source_min.transpose();
+  mesh.screen.bottomRows(4) =
+      (identity.source * (screen_side / side)).rowwise() + screen_min.transpose();
+  return mesh;
+}
+
 }  // namespace geolens::test

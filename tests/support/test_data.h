@@ -20,4 +20,13 @@ WarpMesh grid_warp(int cols, int rows, double width, double height, const Screen
 /// channels and has detail at every scale: (7 x + 13 y + 101 c + x y) mod 256.
 Image pattern(int width, int height, int channels);
 
+/// The width x height pixels of `image` from (x, y), which must lie inside it.
+Image crop(const Image& image, int x, int y, int width, int height);
+
+/// The identity on a side x side frame with a magnifier over it: the source square of side
+/// `source_side` at `source_min` drawn onto the screen square of side `screen_side` at
+/// `screen_min` (two more triangles, on top). What a lens's uniform focus is, without a solve.
+WarpMesh magnified_patch(int side, const Eigen::Vector2d& source_min, double source_side,
+                         const Eigen::Vector2d& screen_min, double screen_side);
+
 }  // namespace geolens::test

@@ -1,0 +1,29 @@
+#pragma once
+// A scalar volume (a CT or MRI scan, a phantom): voxel values on a regular 3D grid.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace geolens {
+
+/// nx x ny x nz voxels, x fastest: the value of voxel (i, j, k) is values[i + nx (j + ny k)],
+/// in the file's physical units (after its scaling: Hounsfield units for a CT). Voxel (i, j, k)
+/// has its centre at model point (i sx, j sy, k sz), spacing (sx, sy, sz) in model units (mm
+/// for a scan), so the volume fills the box [-s/2, (n - 1/2) s] along each axis.
+struct ScalarVolume {
+  int nx = 0, ny = 0, nz = 0;
+  Eigen::Vector3d spacing{1, 1, 1};  ///< > 0, model units
+  std::vector<float> values;         ///< nx ny nz values
+
+  float at(int i, int j, int k) const {
+    return values[size_t(i) + size_t(nx) * (size_t(j) + size_t(ny) * size_t(k))];
+  }
+};
+
+/// Throws InvalidInput naming `function` and `file` for a volume with a side of zero voxels
+/// ("a volume of zero size"), a value count that is not nx ny nz, a non-finite value, or a
+/// spacing that is not finite and positive.
+void check_volume(const ScalarVolume& volume, const char* function, const std::string& file);
+
+}  // namespace geolens

@@ -1,0 +1,269 @@
+#include "geolens/render3d/nrrd_file.h"
+
+#include <zlib.h>
+
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+#include "render3d/voxel_types.h"
+
+namespace geolens {
+
+namespace {
+
+using detail::VoxelType;
+
+bool type_named(const std::string& name, VoxelType& type) {
+  static const std::pair<const char*, VoxelType> names[] = {
+      {"signed char", VoxelType::int8},
+      {"int8", VoxelType::int8},
+      {"int8_t", VoxelType::int8},
+      {"uchar", VoxelType::uint8},
+      {"unsigned char", VoxelType::uint8},
+      {"uint8", VoxelType::uint8},
+      {"uint8_t", VoxelType::uint8},
+      {"short", VoxelType::int16},
+      {"short int", VoxelType::int16},
+      {"signed short", VoxelType::int16},
+      {"signed short int", VoxelType::int16},
+      {"int16", VoxelType::int16},
+      {"int16_t", VoxelType::int16},
+      {"ushort", VoxelType::uint16},
+      {"unsigned short", VoxelType::uint16},
+      {"unsigned short int", VoxelType::uint16},
+      {"uint16", VoxelType::uint16},
+      {"uint16_t", VoxelType::uint16},
+      {"int", VoxelType::int32},
+      {"signed int", VoxelType::int32},
+      {"int32", VoxelType::int32},
+      {"int32_t", VoxelType::int32},
+      {"uint", VoxelType::uint32},
+      {"unsigned int", VoxelType::uint32},
+      {"uint32", VoxelType::uint32},
+      {"uint32_t", VoxelType::uint32},
+      {"float", VoxelType::float32},
+      {"double", VoxelType::float64},
+  };
+  for (const auto& [text, value] : names)
+    if (name == text) {
+      type = value;
+      return true;
+    }
+  return false;
+}
+
+std::string trim(const std::string& s) {
+  const size_t first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+/// Inflates a gzip (or zlib) stream: exactly `expected` bytes, or fewer if the stream ends.
+std::string inflate_all(const unsigned char* data, size_t size, size_t expected,
+                        const std::string& where) {
+  std::string out(expected, '\0');
+  z_stream stream{};
+  require(inflateInit2(&stream, 15 + 32) == Z_OK, "load_nrrd", where + "zlib failed to start");
+  stream.next_in = const_cast<unsigned char*>(data);
+  size_t produced = 0;
+  int status = Z_OK;
+  size_t remaining_in = size;
+  while (produced < expected && status == Z_OK) {
+    const unsigned chunk_in = unsigned(std::min<size_t>(remaining_in, 1u << 30));
+    const unsigned chunk_out = unsigned(std::min<size_t>(expected - produced, 1u << 30));
+    stream.avail_in = chunk_in;
+    stream.next_out = reinterpret_cast<unsigned char*>(out.data()) + produced;
+    stream.avail_out = chunk_out;
+    status = inflate(&stream, Z_NO_FLUSH);
+    remaining_in -= chunk_in - stream.avail_in;
+    produced += chunk_out - stream.avail_out;
+    if (status == Z_BUF_ERROR && remaining_in == 0) break;  // input ended early
+    if (status == Z_BUF_ERROR) status = Z_OK;
+  }
+  const std::string message = stream.msg != nullptr ? stream.msg : "";
+  inflateEnd(&stream);
+  require(status == Z_OK || status == Z_STREAM_END || status == Z_BUF_ERROR, "load_nrrd",
+          where + "corrupt gzip data (" + (message.empty() ? "zlib error" : message) + ")");
+  out.resize(produced);
+  return out;
+}
+
+}  // namespace
+
+ScalarVolume load_nrrd(const std::string& path) {
+  const char* f = "load_nrrd";
+  const std::string where = "'" + path + "': ";
+  const std::string text = read_file(path, f, "NRRD");
+  require(text.compare(0, 7, "NRRD000") == 0 && text.size() > 8 && text[7] >= '1' && text[7] <= '5',
+          f, where + "not a NRRD file (it does not start with NRRD0001 - NRRD0005)");
+
+  std::map<std::string, std::pair<std::string, int>> fields;  // name -> value, line
+  size_t at = 0;
+  int line_number = 0;
+  bool attached = false;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    if (line_number == 1 || (!line.empty() && line[0] == '#')) continue;
+    if (trim(line).empty()) {
+      attached = true;
+      break;
+    }
+    const size_t colon = line.find(':');
+    require(colon != std::string::npos, f,
+            where + "header line " + std::to_string(line_number) + " '" + line.substr(0, 60) +
+                "' is not 'field: value'");
+    if (colon + 1 < line.size() && line[colon + 1] == '=') continue;  // key:=value
+    fields[trim(line.substr(0, colon))] = {trim(line.substr(colon + 1)), line_number};
+  }
+  auto field = [&](const std::string& name, bool required) -> std::string {
+    const auto it = fields.find(name);
+    require(it != fields.end() || !required, f, where + "the header has no '" + name + "' field");
+    return it == fields.end() ? std::string() : it->second.first;
+  };
+  auto bad = [&](const std::string& name, const std::string& what) {
+    return where + "header line " + std::to_string(fields[name].second) + " (" + name + ": " +
+           fields[name].first.substr(0, 60) + "): " + what;
+  };
+
+  VoxelType type = VoxelType::uint8;
+  require(type_named(field("type", true), type), f, bad("type", "unknown type"));
+  require(field("dimension", true) == "3", f, bad("dimension", "only 3D volumes are read"));
+  ScalarVolume volume;
+  {
+    std::istringstream in(field("sizes", true));
+    long long sizes[3];
+    std::string rest;
+    require(bool(in >> sizes[0] >> sizes[1] >> sizes[2]) && !(in >> rest), f,
+            bad("sizes", "expected three sizes"));
+    for (const long long s : sizes)
+      require(s >= 0 && s <= (1 << 16), f, bad("sizes", "a size outside [0, 65536]"));
+    volume.nx = int(sizes[0]);
+    volume.ny = int(sizes[1]);
+    volume.nz = int(sizes[2]);
+    require(volume.nx > 0 && volume.ny > 0 && volume.nz > 0, f,
+            bad("sizes", "a volume of zero size"));
+  }
+  std::string encoding = field("encoding", true);
+  require(encoding == "raw" || encoding == "gzip" || encoding == "gz", f,
+          bad("encoding", "only raw and gzip are read"));
+  const int bytes = detail::voxel_bytes(type);
+  bool swap = false;
+  if (bytes > 1) {
+    const std::string endian = field("endian", true);
+    require(endian == "little" || endian == "big", f, bad("endian", "not little or big"));
+    swap = (endian == "big") != (std::endian::native == std::endian::big);
+  }
+  std::string spacings = field("spacings", false);
+  std::string directions = field("space directions", false);
+  if (!spacings.empty()) {
+    std::istringstream in(spacings);
+    for (int k = 0; k < 3; ++k) {
+      std::string word;
+      require(bool(in >> word), f, bad("spacings", "expected three spacings"));
+      const double s = word == "nan" || word == "NaN" ? 1 : std::strtod(word.c_str(), nullptr);
+      require(std::isfinite(s) && s > 0, f, bad("spacings", "a spacing that is not positive"));
+      volume.spacing[k] = s;
+    }
+  } else if (!directions.empty()) {
+    // "(a,b,c) (d,e,f) (g,h,i)" or "none" for an axis.
+    size_t p = 0;
+    for (int k = 0; k < 3; ++k) {
+      while (p < directions.size() && directions[p] == ' ') ++p;
+      if (directions.compare(p, 4, "none") == 0) {
+        p += 4;
+        continue;
+      }
+      const size_t close = directions.find(')', p);
+      require(p < directions.size() && directions[p] == '(' && close != std::string::npos, f,
+              bad("space directions", "expected three (x,y,z) vectors"));
+      std::string inner = directions.substr(p + 1, close - p - 1);
+      for (char& c : inner)
+        if (c == ',') c = ' ';
+      std::istringstream in(inner);
+      double length2 = 0, c = 0;
+      while (in >> c) length2 += c * c;
+      const double s = std::sqrt(length2);
+      require(std::isfinite(s) && s > 0, f, bad("space directions", "a zero direction"));
+      volume.spacing[k] = s;
+      p = close + 1;
+    }
+  }
+
+  // The data: attached after the blank line, or in a detached file.
+  std::string detached_name = field("data file", false);
+  if (detached_name.empty()) detached_name = field("datafile", false);
+  std::string detached;
+  const std::string* data = &text;
+  size_t data_start = at;
+  std::string data_where = where;
+  if (!detached_name.empty()) {
+    const std::filesystem::path name(detached_name);
+    const std::string data_path = name.is_absolute()
+                                      ? name.string()
+                                      : (std::filesystem::path(path).parent_path() / name).string();
+    detached = read_file(data_path, f, "NRRD data");
+    data = &detached;
+    data_start = 0;
+    data_where = where + "data file '" + data_path + "': ";
+  } else {
+    require(attached, f, where + "no data: the header has no blank line and no 'data file'");
+  }
+  const std::string line_skip = field("line skip", false);
+  if (!line_skip.empty()) {
+    const long n = std::strtol(line_skip.c_str(), nullptr, 10);
+    for (long i = 0; i < n && data_start < data->size(); ++i) {
+      const size_t end = data->find('\n', data_start);
+      data_start = end == std::string::npos ? data->size() : end + 1;
+    }
+  }
+  const size_t count = size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz);
+  const size_t expected = count * size_t(bytes);
+  const std::string size_text = std::to_string(volume.nx) + " x " + std::to_string(volume.ny) +
+                                " x " + std::to_string(volume.nz) + " " +
+                                detail::voxel_type_name(type) + " voxels (" +
+                                std::to_string(expected) + " bytes)";
+  const std::string byte_skip = field("byte skip", false);
+  long long skip = byte_skip.empty() ? 0 : std::strtoll(byte_skip.c_str(), nullptr, 10);
+  std::string inflated;
+  const unsigned char* samples = nullptr;
+  if (encoding == "raw") {
+    if (skip == -1) {
+      require(data->size() >= expected, f,
+              data_where + "the header claims " + size_text + ", the file holds " +
+                  std::to_string(data->size()) + " bytes");
+      data_start = data->size() - expected;
+    } else {
+      require(skip >= 0, f, bad("byte skip", "not -1 or a byte count"));
+      data_start += size_t(skip);
+    }
+    const size_t held = data->size() > data_start ? data->size() - data_start : 0;
+    require(held >= expected, f,
+            data_where + "the header claims " + size_text + ", the data holds " +
+                std::to_string(held) + " bytes");
+    samples = reinterpret_cast<const unsigned char*>(data->data()) + data_start;
+  } else {
+    const size_t held = data->size() > data_start ? data->size() - data_start : 0;
+    inflated = inflate_all(reinterpret_cast<const unsigned char*>(data->data()) + data_start, held,
+                           expected, data_where);
+    require(inflated.size() == expected, f,
+            data_where + "the header claims " + size_text + ", the gzip data holds " +
+                std::to_string(inflated.size()) + " bytes");
+    samples = reinterpret_cast<const unsigned char*>(inflated.data());
+  }
+  volume.values.resize(count);
+  detail::decode_voxels(samples, count, type, swap, volume.values.data());
+  check_volume(volume, f, path);
+  return volume;
+}
+
+}  // namespace geolens

@@ -1,0 +1,87 @@
+#include "geolens/render3d/obj_file.h"
+
+#include <tiny_obj_loader.h>
+
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+
+namespace geolens {
+
+namespace {
+
+/// The first line of tinyobjloader's message, without its trailing newline.
+std::string first_line(const std::string& text) {
+  const size_t end = text.find('\n');
+  return end == std::string::npos ? text : text.substr(0, end);
+}
+
+}  // namespace
+
+TriangleMesh load_obj(const std::string& path) {
+  const char* f = "load_obj";
+  const std::string text = read_file(path, f, "OBJ");
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  // No material text: materials are not used, and a missing .mtl must not matter.
+  const bool parsed = reader.ParseFromString(text, "", config);
+  require(
+      parsed && reader.Error().empty(), f,
+      "'" + path + "': " +
+          (reader.Error().empty() ? std::string("not an OBJ file") : first_line(reader.Error())));
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  TriangleMesh mesh;
+  const Eigen::Index vertices = Eigen::Index(attrib.vertices.size() / 3);
+  mesh.V.resize(vertices, 3);
+  for (Eigen::Index v = 0; v < vertices; ++v)
+    for (int k = 0; k < 3; ++k) mesh.V(v, k) = attrib.vertices[size_t(3 * v + k)];
+
+  size_t triangles = 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes())
+    triangles += shape.mesh.num_face_vertices.size();
+  mesh.F.resize(Eigen::Index(triangles), 3);
+  std::vector<int> normal_of(size_t(vertices), -1);  // -1: none yet, -2: inconsistent
+  bool normals = !attrib.normals.empty();
+  Eigen::Index row = 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    size_t corner = 0;
+    for (const unsigned char count : shape.mesh.num_face_vertices) {
+      require(count == 3, f,
+              "'" + path + "': face " + std::to_string(row) + " has " + std::to_string(count) +
+                  " corners after triangulation");
+      for (int k = 0; k < 3; ++k, ++corner) {
+        const tinyobj::index_t index = shape.mesh.indices[corner];
+        require(index.vertex_index >= 0 && index.vertex_index < vertices, f,
+                "'" + path + "': face " + std::to_string(row) + " names vertex " +
+                    std::to_string(index.vertex_index + 1) + " of " + std::to_string(vertices));
+        mesh.F(row, k) = index.vertex_index;
+        int& n = normal_of[size_t(index.vertex_index)];
+        if (index.normal_index < 0 || size_t(index.normal_index) * 3 >= attrib.normals.size())
+          normals = false;
+        else if (n == -1)
+          n = index.normal_index;
+        else if (n != index.normal_index)
+          normals = false;
+      }
+      ++row;
+    }
+  }
+  if (normals) {
+    mesh.N = Eigen::MatrixXd::Zero(vertices, 3);
+    for (Eigen::Index v = 0; v < vertices; ++v) {
+      const int n = normal_of[size_t(v)];
+      if (n < 0) continue;
+      const Eigen::RowVector3d normal(attrib.normals[size_t(3 * n)],
+                                      attrib.normals[size_t(3 * n + 1)],
+                                      attrib.normals[size_t(3 * n + 2)]);
+      if (normal.norm() > 0) mesh.N.row(v) = normal.normalized();
+    }
+  }
+  check_triangle_mesh(mesh, f, path);
+  return mesh;
+}
+
+}  // namespace geolens

@@ -1,0 +1,305 @@
+#include "geolens/render3d/ply_file.h"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
+
+namespace geolens {
+
+namespace {
+
+enum class Format { ascii, little_endian, big_endian };
+
+enum class Scalar { int8, uint8, int16, uint16, int32, uint32, float32, float64, none };
+
+struct Property {
+  std::string name;
+  Scalar type = Scalar::none;        ///< the value's type, or the list's entries' type
+  Scalar count_type = Scalar::none;  ///< the list's length type; none for a scalar property
+};
+
+struct Element {
+  std::string name;
+  long long count = 0;
+  std::vector<Property> properties;
+};
+
+Scalar scalar_named(const std::string& name) {
+  if (name == "char" || name == "int8") return Scalar::int8;
+  if (name == "uchar" || name == "uint8") return Scalar::uint8;
+  if (name == "short" || name == "int16") return Scalar::int16;
+  if (name == "ushort" || name == "uint16") return Scalar::uint16;
+  if (name == "int" || name == "int32") return Scalar::int32;
+  if (name == "uint" || name == "uint32") return Scalar::uint32;
+  if (name == "float" || name == "float32") return Scalar::float32;
+  if (name == "double" || name == "float64") return Scalar::float64;
+  return Scalar::none;
+}
+
+int bytes_of(Scalar type) {
+  switch (type) {
+    case Scalar::int8:
+    case Scalar::uint8:
+      return 1;
+    case Scalar::int16:
+    case Scalar::uint16:
+      return 2;
+    case Scalar::int32:
+    case Scalar::uint32:
+    case Scalar::float32:
+      return 4;
+    case Scalar::float64:
+      return 8;
+    case Scalar::none:
+      break;
+  }
+  return 0;
+}
+
+/// Reads the rows of the body, binary or ASCII, one value at a time.
+class BodyReader {
+ public:
+  BodyReader(const std::string& text, size_t start, Format format, const std::string& path)
+      : text_(text), at_(start), format_(format), path_(path) {}
+
+  /// Starts row `row` of `element` (for ASCII: the next line).
+  void begin_row(const Element& element, long long row) {
+    element_ = &element;
+    row_ = row;
+    if (format_ != Format::ascii) return;
+    while (true) {
+      if (at_ >= text_.size()) fail("the file ends");
+      const size_t end = std::min(text_.find('\n', at_), text_.size());
+      line_.clear();
+      line_.str(text_.substr(at_, end - at_));
+      at_ = end + 1;
+      int c = line_.peek();
+      while (c == ' ' || c == '\t' || c == '\r') {
+        line_.get();
+        c = line_.peek();
+      }
+      if (c != EOF) break;  // skip blank lines
+    }
+  }
+
+  double value(Scalar type) {
+    if (format_ == Format::ascii) {
+      double v = 0;
+      if (!(line_ >> v)) fail("has too few values or one that is not a number");
+      return v;
+    }
+    const int n = bytes_of(type);
+    if (at_ + size_t(n) > text_.size()) fail("the file ends");
+    unsigned char b[8];
+    std::memcpy(b, text_.data() + at_, size_t(n));
+    at_ += size_t(n);
+    const bool swap =
+        (format_ == Format::big_endian) == (std::endian::native == std::endian::little);
+    if (swap)
+      for (int i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+    switch (type) {
+      case Scalar::int8:
+        return double(int8_t(b[0]));
+      case Scalar::uint8:
+        return double(b[0]);
+      case Scalar::int16:
+        return double(std::bit_cast<int16_t>(std::array{b[0], b[1]}));
+      case Scalar::uint16:
+        return double(std::bit_cast<uint16_t>(std::array{b[0], b[1]}));
+      case Scalar::int32:
+        return double(std::bit_cast<int32_t>(std::array{b[0], b[1], b[2], b[3]}));
+      case Scalar::uint32:
+        return double(std::bit_cast<uint32_t>(std::array{b[0], b[1], b[2], b[3]}));
+      case Scalar::float32:
+        return double(std::bit_cast<float>(std::array{b[0], b[1], b[2], b[3]}));
+      case Scalar::float64: {
+        double d;
+        std::memcpy(&d, b, 8);
+        return d;
+      }
+      case Scalar::none:
+        break;
+    }
+    return 0;
+  }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InvalidInput("load_ply: '" + path_ + "': " + element_->name + " " + std::to_string(row_) +
+                       " of " + std::to_string(element_->count) + ": " + what);
+  }
+
+ private:
+  const std::string& text_;
+  size_t at_;
+  Format format_;
+  const std::string& path_;
+  std::istringstream line_;
+  const Element* element_ = nullptr;
+  long long row_ = 0;
+};
+
+}  // namespace
+
+TriangleMesh load_ply(const std::string& path) {
+  const char* f = "load_ply";
+  const std::string text = read_file(path, f, "PLY");
+  const std::string where = "'" + path + "': ";
+
+  // The header: lines up to "end_header".
+  std::vector<Element> elements;
+  Format format = Format::ascii;
+  bool have_format = false;
+  size_t at = 0;
+  int line_number = 0;
+  while (true) {
+    require(at < text.size(), f, where + "the header has no end_header line");
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string bad =
+        where + "header line " + std::to_string(line_number) + " '" + line.substr(0, 60) + "': ";
+    std::istringstream in(line);
+    std::string word;
+    in >> word;
+    if (line_number == 1) {
+      require(word == "ply", f, where + "not a PLY file (it does not start with 'ply')");
+      continue;
+    }
+    if (word == "end_header") break;
+    if (word.empty() || word == "comment" || word == "obj_info") continue;
+    if (word == "format") {
+      std::string name, version;
+      in >> name >> version;
+      if (name == "ascii")
+        format = Format::ascii;
+      else if (name == "binary_little_endian")
+        format = Format::little_endian;
+      else if (name == "binary_big_endian")
+        format = Format::big_endian;
+      else
+        require(false, f, bad + "unknown format '" + name + "'");
+      require(version == "1.0", f, bad + "unknown version '" + version + "'");
+      have_format = true;
+    } else if (word == "element") {
+      Element element;
+      require(bool(in >> element.name >> element.count) && element.count >= 0, f,
+              bad + "expected 'element NAME COUNT'");
+      elements.push_back(element);
+    } else if (word == "property") {
+      require(!elements.empty(), f, bad + "a property before any element");
+      Property property;
+      std::string type;
+      in >> type;
+      if (type == "list") {
+        std::string count_type, entry_type;
+        in >> count_type >> entry_type >> property.name;
+        property.count_type = scalar_named(count_type);
+        property.type = scalar_named(entry_type);
+        require(property.count_type != Scalar::none && property.count_type != Scalar::float32 &&
+                    property.count_type != Scalar::float64 && property.type != Scalar::none,
+                f, bad + "unknown list types");
+      } else {
+        in >> property.name;
+        property.type = scalar_named(type);
+        require(property.type != Scalar::none, f, bad + "unknown type '" + type + "'");
+      }
+      require(!property.name.empty(), f, bad + "the property has no name");
+      elements.back().properties.push_back(property);
+    } else {
+      require(false, f, bad + "unknown keyword '" + word + "'");
+    }
+  }
+  require(have_format, f, where + "the header has no format line");
+
+  const Element* vertex = nullptr;
+  const Element* face = nullptr;
+  for (const Element& e : elements) {
+    if (e.name == "vertex") vertex = &e;
+    if (e.name == "face") face = &e;
+  }
+  require(vertex != nullptr, f, where + "no vertex element");
+  require(face != nullptr, f, where + "no face element");
+  auto find = [](const Element& e, const std::string& name) {
+    for (size_t i = 0; i < e.properties.size(); ++i)
+      if (e.properties[i].name == name) return int(i);
+    return -1;
+  };
+  const int px = find(*vertex, "x"), py = find(*vertex, "y"), pz = find(*vertex, "z");
+  require(px >= 0 && py >= 0 && pz >= 0, f, where + "the vertex element lacks x, y or z");
+  for (const int p : {px, py, pz})
+    require(vertex->properties[size_t(p)].count_type == Scalar::none, f,
+            where + "vertex coordinates must be scalars");
+  const int pnx = find(*vertex, "nx"), pny = find(*vertex, "ny"), pnz = find(*vertex, "nz");
+  const bool normals = pnx >= 0 && pny >= 0 && pnz >= 0;
+  int list = find(*face, "vertex_indices");
+  if (list < 0) list = find(*face, "vertex_index");
+  require(list >= 0 && face->properties[size_t(list)].count_type != Scalar::none, f,
+          where + "the face element has no vertex_indices list");
+  require(vertex->count <= (1LL << 31) - 1 && face->count <= (1LL << 30), f,
+          where + "too many vertices or faces");
+
+  TriangleMesh mesh;
+  mesh.V.resize(Eigen::Index(vertex->count), 3);
+  if (normals) mesh.N.resize(Eigen::Index(vertex->count), 3);
+  std::vector<Eigen::Vector3i> triangles;
+  BodyReader body(text, at, format, path);
+  std::vector<double> values;
+  for (const Element& e : elements) {
+    for (long long row = 0; row < e.count; ++row) {
+      body.begin_row(e, row);
+      values.assign(e.properties.size(), 0);
+      std::vector<int> corners;
+      for (size_t p = 0; p < e.properties.size(); ++p) {
+        const Property& property = e.properties[p];
+        if (property.count_type == Scalar::none) {
+          values[p] = body.value(property.type);
+          continue;
+        }
+        const double count = body.value(property.count_type);
+        if (count < 0 || count != std::floor(count) || count > 1e6)
+          body.fail("a list length of " + std::to_string(count));
+        const bool is_corners = &e == face && int(p) == list;
+        for (int i = 0; i < int(count); ++i) {
+          const double index = body.value(property.type);
+          if (!is_corners) continue;
+          if (index < 0 || index >= double(vertex->count) || index != std::floor(index))
+            body.fail("names vertex " + std::to_string(index) + ", outside [0, " +
+                      std::to_string(vertex->count) + ")");
+          corners.push_back(int(index));
+        }
+      }
+      if (&e == vertex) {
+        mesh.V.row(Eigen::Index(row)) << values[size_t(px)], values[size_t(py)], values[size_t(pz)];
+        if (normals)
+          mesh.N.row(Eigen::Index(row)) << values[size_t(pnx)], values[size_t(pny)],
+              values[size_t(pnz)];
+      } else if (&e == face) {
+        if (corners.size() < 3)
+          body.fail("has " + std::to_string(corners.size()) + " corners, fewer than 3");
+        for (size_t i = 1; i + 1 < corners.size(); ++i)
+          triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
+      }
+    }
+  }
+  mesh.F.resize(Eigen::Index(triangles.size()), 3);
+  for (size_t t = 0; t < triangles.size(); ++t) mesh.F.row(Eigen::Index(t)) = triangles[t];
+  if (normals)
+    for (Eigen::Index v = 0; v < mesh.N.rows(); ++v) {
+      const double length = mesh.N.row(v).norm();
+      if (length > 0 && std::isfinite(length)) mesh.N.row(v) /= length;
+    }
+  check_triangle_mesh(mesh, f, path);
+  return mesh;
+}
+
+}  // namespace geolens

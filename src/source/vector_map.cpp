@@ -1,0 +1,409 @@
+#include "geolens/source/vector_map.h"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/geojson.h"
+#include "geolens/source/map_labels.h"
+#include "geolens/source/tiled_source.h"
+#include "source/cairo_tile.h"
+
+namespace geolens {
+
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr int kMaxFrame = 16384;
+constexpr double kMaxMercatorLatitude = 85.0511287798066;  // where Web Mercator is square
+constexpr double kPi = 3.14159265358979323846;
+
+struct Box {
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0;
+  double x1 = -std::numeric_limits<double>::infinity(), y1 = x1;
+  void add(double x, double y) {
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
+  bool meets(const Box& b) const { return x0 <= b.x1 && b.x0 <= x1 && y0 <= b.y1 && b.y0 <= y1; }
+  bool empty() const { return !(x0 <= x1 && y0 <= y1); }
+};
+
+/// A path of frame pixels and its bounding box.
+struct Path {
+  Eigen::MatrixX2d points;
+  Box box;
+};
+
+/// What a geometry draws as: dots, strokes, or a filled area of rings (even-odd).
+enum class Kind { kPoints, kLines, kArea };
+
+struct Part {
+  Kind kind;
+  std::vector<Path> paths;
+};
+
+struct Layer {
+  MapLayerStyle style;
+  std::vector<size_t> features;  ///< the features it selects, indices
+};
+
+/// Everything a tile is drawn from; read-only once built.
+struct MapData {
+  std::vector<std::vector<Part>> features;  ///< the parts of each feature, frame pixels
+  std::vector<Box> feature_boxes;
+  std::vector<Layer> layers;
+  std::array<uint8_t, 3> background;
+  double scale;
+  double max_reach;  ///< texels a stroke or dot reaches beyond its path: culling margin
+};
+
+/// `value` as a message shows it: 120, 41.5, 1e+300.
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+/// (lon, lat) degrees projected, y north.
+Eigen::Vector2d project(MapProjection projection, double lon, double lat) {
+  if (projection == MapProjection::kPlateCarree) return {lon, lat};
+  const double phi = std::clamp(lat, -kMaxMercatorLatitude, kMaxMercatorLatitude) * kPi / 180;
+  return {lon * kPi / 180, std::log(std::tan(kPi / 4 + phi / 2))};
+}
+
+void add_parts(const Geometry& g, std::vector<Part>& parts) {
+  switch (g.type) {
+    case GeometryType::kPoint:
+    case GeometryType::kMultiPoint:
+      parts.push_back({Kind::kPoints, {}});
+      break;
+    case GeometryType::kLineString:
+    case GeometryType::kMultiLineString:
+      parts.push_back({Kind::kLines, {}});
+      break;
+    case GeometryType::kPolygon:
+    case GeometryType::kMultiPolygon:
+      parts.push_back({Kind::kArea, {}});
+      break;
+    case GeometryType::kGeometryCollection:
+      for (const Geometry& m : g.members) add_parts(m, parts);
+      return;
+  }
+  for (const Eigen::MatrixX2d& p : g.paths) parts.back().paths.push_back({p, {}});
+}
+
+bool selects(const MapLayerStyle& layer, const std::vector<std::vector<Json>>& wanted,
+             const Json& properties) {
+  for (size_t c = 0; c < layer.where.size(); ++c) {
+    if (!properties.is_object()) return false;
+    const auto value = properties.find(layer.where[c].key);
+    if (value == properties.end()) return false;
+    if (std::none_of(wanted[c].begin(), wanted[c].end(),
+                     [&](const Json& w) { return w == *value; }))
+      return false;
+  }
+  return true;
+}
+
+void set_color(cairo_t* cr, const MapColor& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+
+/// Strokes the current path `width` device pixels wide, whatever the user transform.
+void stroke_device(cairo_t* cr, const MapColor& color, double width) {
+  cairo_save(cr);
+  cairo_identity_matrix(cr);
+  set_color(cr, color);
+  cairo_set_line_width(cr, width);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+}
+
+void add_path(cairo_t* cr, const Eigen::MatrixX2d& p, bool close) {
+  cairo_move_to(cr, p(0, 0), p(0, 1));
+  for (Eigen::Index i = 1; i < p.rows(); ++i) cairo_line_to(cr, p(i, 0), p(i, 1));
+  if (close) cairo_close_path(cr);
+}
+
+/// Whether a layer of `style` draws parts of `kind`.
+bool draws(const MapLayerStyle& style, Kind kind) {
+  using G = MapLayerStyle::Geometry;
+  switch (style.geometry) {
+    case G::kAny:
+      return true;
+    case G::kPoint:
+      return kind == Kind::kPoints;
+    case G::kLine:
+      return kind == Kind::kLines;
+    case G::kPolygon:
+      return kind == Kind::kArea;
+  }
+  return false;
+}
+
+/// Draws the parts of one feature that meet `view` (frame pixels) in `style`.
+void draw_feature(cairo_t* cr, const std::vector<Part>& parts, const MapLayerStyle& style,
+                  const Box& view) {
+  const bool stroke = style.stroke && style.width > 0;
+  for (const Part& part : parts) {
+    if (!draws(style, part.kind)) continue;
+    cairo_new_path(cr);
+    if (part.kind == Kind::kArea) {
+      if (!style.fill && !stroke) continue;
+      for (const Path& ring : part.paths)
+        if (ring.box.meets(view)) add_path(cr, ring.points, true);
+      if (style.fill) {
+        set_color(cr, *style.fill);
+        cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+        stroke ? cairo_fill_preserve(cr) : cairo_fill(cr);
+      }
+      if (stroke) stroke_device(cr, *style.stroke, style.width);
+    } else if (part.kind == Kind::kLines) {
+      if (!stroke) continue;
+      for (const Path& line : part.paths)
+        if (line.box.meets(view)) add_path(cr, line.points, false);
+      stroke_device(cr, *style.stroke, style.width);
+    } else {
+      // A labelled layer's points are drawn with their labels, upright (MapDot).
+      if (style.label || style.radius <= 0 || (!style.fill && !stroke)) continue;
+      for (const Path& points : part.paths) {
+        if (!points.box.meets(view)) continue;
+        for (Eigen::Index i = 0; i < points.points.rows(); ++i) {
+          double x = points.points(i, 0), y = points.points(i, 1);
+          cairo_user_to_device(cr, &x, &y);
+          cairo_save(cr);
+          cairo_identity_matrix(cr);
+          cairo_new_path(cr);
+          cairo_arc(cr, x, y, style.radius, 0, 2 * kPi);
+          if (style.fill) {
+            set_color(cr, *style.fill);
+            stroke ? cairo_fill_preserve(cr) : cairo_fill(cr);
+          }
+          if (stroke) stroke_device(cr, *style.stroke, style.width);
+          cairo_restore(cr);
+        }
+      }
+    }
+  }
+  cairo_new_path(cr);
+}
+
+Image draw_tile(const MapData& map, const TileRequest& request) {
+  const double texels_per_frame = map.scale / double(int64_t(1) << request.level);
+  const double zoom = texels_per_frame;  // the level is shown 1:1 at this magnification
+  const double margin = (map.max_reach + 1) / texels_per_frame;
+  Box view;
+  view.add(request.x / texels_per_frame - margin, request.y / texels_per_frame - margin);
+  view.add((request.x + request.width) / texels_per_frame + margin,
+           (request.y + request.height) / texels_per_frame + margin);
+  return cairo_tile(
+      request, map.scale, map.background,
+      [&](cairo_t* cr) {
+        cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+        cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+        for (const Layer& layer : map.layers) {
+          if (zoom < layer.style.min_zoom || zoom >= layer.style.max_zoom) continue;
+          for (size_t f : layer.features)
+            if (map.feature_boxes[f].meets(view))
+              draw_feature(cr, map.features[f], layer.style, view);
+        }
+      },
+      "vector_map_source");
+}
+
+/// The map's tiles' data, its labels and its frame.
+struct BuiltMap {
+  std::shared_ptr<MapData> map;
+  std::shared_ptr<std::vector<MapLabel>> labels;
+  std::shared_ptr<std::vector<MapDot>> dots;
+  int width, height;
+};
+
+BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int height,
+                   const char* function) {
+  require(width >= 0 && height >= 0 && width <= kMaxFrame && height <= kMaxFrame, function,
+          "the size " + std::to_string(width) + " x " + std::to_string(height) +
+              " is not in [0, 16384]");
+  const std::string problem = vector_data_problem(data);
+  require(problem.empty(), function, problem);
+
+  auto map = std::make_shared<MapData>();
+  // Every feature's parts, projected (still y north).
+  Box extent;
+  map->features.resize(data.features.size());
+  for (size_t f = 0; f < data.features.size(); ++f) {
+    if (!data.features[f].geometry) continue;
+    add_parts(*data.features[f].geometry, map->features[f]);
+    for (Part& part : map->features[f])
+      for (Path& path : part.paths)
+        for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
+          const double lon = path.points(i, 0), lat = path.points(i, 1);
+          require(lon >= -180 && lon <= 180 && lat >= -90 && lat <= 90, function,
+                  "feature " + std::to_string(f) + ": the position (" + number_text(lon) + ", " +
+                      number_text(lat) +
+                      ") is not a longitude in [-180, 180] and a latitude in [-90, 90] (a vector "
+                      "map is in degrees, WGS84)");
+          const Eigen::Vector2d p = project(style.projection, lon, lat);
+          path.points.row(i) = p.transpose();
+          if (!style.extent) extent.add(p.x(), p.y());
+        }
+  }
+  if (style.extent) {
+    const auto& e = *style.extent;
+    const Eigen::Vector2d a = project(style.projection, e[0], e[1]);
+    const Eigen::Vector2d b = project(style.projection, e[2], e[3]);
+    extent.add(a.x(), a.y());
+    extent.add(b.x(), b.y());
+  }
+  require(!extent.empty(), function, "nothing to frame: the data has no coordinates");
+  // A single point or a straight line still gets an area around it.
+  const double pad = style.projection == MapProjection::kPlateCarree ? 0.01 : 0.01 * kPi / 180;
+  if (extent.x1 - extent.x0 <= 0) extent.x0 -= pad, extent.x1 += pad;
+  if (extent.y1 - extent.y0 <= 0) extent.y0 -= pad, extent.y1 += pad;
+  const double dx = extent.x1 - extent.x0, dy = extent.y1 - extent.y0;
+
+  if (width == 0 && height == 0) width = kVectorMapDefaultWidth;
+  if (height == 0) height = int(std::lround(width * dy / dx));
+  if (width == 0) width = int(std::lround(height * dx / dy));
+  require(width >= 1 && height >= 1 && width <= kMaxFrame && height <= kMaxFrame, function,
+          "the extent's aspect gives a frame of " + std::to_string(width) + " x " +
+              std::to_string(height) + " pixels, outside [1, 16384]: give both sides of the size");
+  const double k = std::min(width / dx, height / dy);  // frame pixels per projected unit
+  const double ox = (width - k * dx) / 2, oy = (height - k * dy) / 2;
+
+  map->feature_boxes.resize(map->features.size());
+  for (size_t f = 0; f < map->features.size(); ++f)
+    for (Part& part : map->features[f])
+      for (Path& path : part.paths) {
+        for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
+          path.points(i, 0) = ox + (path.points(i, 0) - extent.x0) * k;
+          path.points(i, 1) = oy + (extent.y1 - path.points(i, 1)) * k;
+          path.box.add(path.points(i, 0), path.points(i, 1));
+        }
+        map->feature_boxes[f].add(path.box.x0, path.box.y0);
+        map->feature_boxes[f].add(path.box.x1, path.box.y1);
+      }
+
+  // The layers' selections and the labels, from the properties.
+  std::vector<Json> properties(data.features.size());
+  for (size_t f = 0; f < data.features.size(); ++f)
+    properties[f] = Json::parse(data.features[f].properties, nullptr, false);
+  auto labels = std::make_shared<std::vector<MapLabel>>();
+  auto dots = std::make_shared<std::vector<MapDot>>();
+  map->max_reach = 0;
+  for (const MapLayerStyle& s : style.layers) {
+    Layer layer{s, {}};
+    std::vector<std::vector<Json>> wanted;
+    for (const auto& c : s.where) {
+      wanted.emplace_back();
+      for (const std::string& v : c.values) wanted.back().push_back(Json::parse(v));
+    }
+    for (size_t f = 0; f < data.features.size(); ++f)
+      if (selects(s, wanted, properties[f])) layer.features.push_back(f);
+    map->max_reach = std::max(map->max_reach, s.radius + s.width / 2);
+    if (s.label) {
+      for (size_t f : layer.features) {
+        if (s.radius > 0)
+          for (const Part& part : map->features[f])
+            if (part.kind == Kind::kPoints && draws(s, part.kind))
+              for (const Path& path : part.paths)
+                for (Eigen::Index i = 0; i < path.points.rows(); ++i)
+                  dots->push_back({path.points.row(i).transpose(), s.radius, s.fill, s.stroke,
+                                   s.width, s.min_zoom, s.max_zoom});
+        const Json& p = properties[f];
+        if (!p.is_object()) continue;
+        std::string text;
+        for (const std::string& key : s.label->text) {
+          const auto t = p.find(key);
+          if (t != p.end() && t->is_string() && !t->get<std::string>().empty()) {
+            text = t->get<std::string>();
+            break;
+          }
+        }
+        if (text.empty()) continue;
+        const auto r = p.find(s.label->rank);
+        const double rank = r != p.end() && r->is_number() ? r->get<double>() : 0;
+        for (const Part& part : map->features[f]) {
+          if (part.kind != Kind::kPoints || !draws(s, part.kind)) continue;
+          for (const Path& path : part.paths)
+            for (Eigen::Index i = 0; i < path.points.rows(); ++i)
+              labels->push_back({path.points.row(i).transpose(), text, rank, s.radius + 2, *s.label,
+                                 s.min_zoom, s.max_zoom});
+        }
+      }
+    }
+    map->layers.push_back(std::move(layer));
+  }
+  auto channel = [](double c) { return uint8_t(std::lround(std::clamp(c, 0.0, 1.0) * 255)); };
+  map->background = {channel(style.background.r), channel(style.background.g),
+                     channel(style.background.b)};
+  map->scale = double(1 << kVectorMapDetail);
+  return {map, labels, dots, width, height};
+}
+
+}  // namespace
+
+std::vector<MapLabel> vector_map_labels(const VectorData& data, const MapStyle& style, int width,
+                                        int height) {
+  return *build_map(data, style, width, height, "vector_map_labels").labels;
+}
+
+SourceFile vector_map_source(const VectorData& data, const MapStyle& style, int width, int height) {
+  const auto [map, labels, dots, frame_width, frame_height] =
+      build_map(data, style, width, height, "vector_map_source");
+
+  auto source = std::make_shared<TiledSource>(
+      int(frame_width * map->scale), int(frame_height * map->scale), 3,
+      [map](const TileRequest& request) { return draw_tile(*map, request); });
+  auto placed_count = std::make_shared<std::atomic<size_t>>(0);
+
+  SourceFile file;
+  file.frame_width = frame_width;
+  file.frame_height = frame_height;
+  file.scale = map->scale;
+  file.kind = "vector map";
+  // Each zoom is drawn on its own (labels, line widths): blended only about their midpoint.
+  file.level_band = 0.25;
+  const size_t feature_count = data.features.size();
+  file.counters = [source, placed_count, feature_count]() {
+    const TileCacheStats stats = source->cache_stats();
+    return std::vector<std::pair<std::string, double>>{
+        {"tiles", double(stats.tiles_made)},
+        {"cache_peak_mb", double(stats.peak_bytes) / (1 << 20)},
+        {"labels", double(placed_count->load())},
+        {"features", double(feature_count)}};
+  };
+  if (!labels->empty() || !dots->empty())
+    file.overlay = [labels, dots, placed_count](Image& output, const WarpMap& warp) {
+      draw_dots(output, *dots, warp);
+      const std::vector<PlacedLabel> placed =
+          place_labels(*labels, warp, output.width, output.height);
+      draw_labels(output, *labels, placed);
+      placed_count->store(placed.size());
+    };
+  file.source = std::move(source);
+  return file;
+}
+
+SourceFile open_vector_map(const std::string& path, const SourceFileOptions& options) {
+  const MapStyle style =
+      options.style.empty() ? default_map_style() : read_map_style(options.style);
+  const VectorData data = read_geojson(path);
+  try {
+    return vector_map_source(data, style, options.width, options.height);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(std::string("open_vector_map: '") + path + "': " + e.what());
+  }
+}
+
+}  // namespace geolens

@@ -1,0 +1,108 @@
+// `geolens magnify` on a mesh (OBJ) and a volume (NRRD) through the real binary: the frame from
+// --size, the camera from --view, the transfer from --transfer, the source's numbers in --stats,
+// and one-line refusals with exit 2 and nothing written for bad 3D files and options.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "geolens/io/image.h"
+#include "support/cli_test.h"
+
+namespace geolens {
+namespace {
+
+using testing::CliRun;
+
+class Scene3dCli : public testing::CliTest {
+ protected:
+  void write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(path(name), std::ios::binary) << bytes;
+  }
+  nlohmann::json stats() const {
+    std::ifstream in(path("stats.json"));
+    return nlohmann::json::parse(in);
+  }
+  /// A cube [-1, 1]^3 of quads.
+  void write_cube() const {
+    write("cube.obj",
+          "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+          "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n");
+  }
+  /// A 16^3 int16 NRRD: 1000 inside a sphere of radius 6 voxels, -1000 outside.
+  void write_sphere() const {
+    std::string data;
+    for (int k = 0; k < 16; ++k)
+      for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) {
+          const double r =
+              std::sqrt((i - 7.5) * (i - 7.5) + (j - 7.5) * (j - 7.5) + (k - 7.5) * (k - 7.5));
+          const int16_t v = r < 6 ? 1000 : -1000;
+          data.append(reinterpret_cast<const char*>(&v), 2);
+        }
+    write("sphere.nrrd",
+          "NRRD0004\ntype: short\ndimension: 3\nsizes: 16 16 16\nencoding: raw\n"
+          "endian: little\n\n" +
+              data);
+  }
+};
+
+TEST_F(Scene3dCli, MagnifiesAMeshSeenFromTheView) {
+  write_cube();
+  const CliRun r = run("magnify " + path("cube.obj") +
+                       " --view 0,0 --size 200x160 --lens circle:150,80,25:2 -o " +
+                       path("out.png") + " --stats " + path("stats.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image out = load_image(path("out.png"));
+  EXPECT_EQ(out.width, 200);
+  EXPECT_EQ(out.height, 160);
+  // Seen from the front, the cube is a grey square around the centre on white.
+  EXPECT_LT(out.at(100, 80)[0], 250);
+  EXPECT_EQ(out.at(3, 3)[0], 255);
+  const nlohmann::json source = stats().at("source");
+  EXPECT_EQ(source.at("kind"), "mesh");
+  EXPECT_EQ(source.at("scale"), 4.0);
+  EXPECT_GE(source.at("tiles_rendered").get<double>(), 1);
+}
+
+TEST_F(Scene3dCli, MagnifiesAVolumeThroughTheCtPreset) {
+  write_sphere();
+  const CliRun r = run("magnify " + path("sphere.nrrd") +
+                       " --transfer ct --view 30,20 --size 120x120 --lens circle:60,60,20:2 -o " +
+                       path("out.png") + " --stats " + path("stats.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image out = load_image(path("out.png"));
+  EXPECT_EQ(out.width, 120);
+  EXPECT_GT(out.at(60, 60)[0], 100);  // bone: bright
+  EXPECT_EQ(out.at(2, 2)[0], 0);      // the black background
+  EXPECT_EQ(stats().at("source").at("kind"), "volume");
+}
+
+TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
+  write_cube();
+  write_sphere();
+  write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  write("empty.obj", "v 0 0 0\n");
+  write("short.nrrd",
+        "NRRD0004\ntype: short\ndimension: 3\nsizes: 10 10 10\nencoding: raw\nendian: "
+        "little\n\n0123456789");
+  write("zero.nrrd",
+        "NRRD0004\ntype: short\ndimension: 3\nsizes: 10 0 10\nencoding: raw\nendian: little\n\n");
+  const std::string lens = " --lens circle:50,50,20 -o " + path("out.png");
+  expect_refused("magnify " + path("bad.obj") + lens, "face 0 names vertex 9 of 3");
+  expect_refused("magnify " + path("empty.obj") + lens, "the mesh has no triangle");
+  expect_refused("magnify " + path("short.nrrd") + lens,
+                 "the header claims 10 x 10 x 10 int16 voxels (2000 bytes), the data holds 10");
+  expect_refused("magnify " + path("zero.nrrd") + lens, "a volume of zero size");
+  expect_refused("magnify " + path("sphere.nrrd") + " --transfer bone" + lens,
+                 "unknown transfer 'bone'");
+  expect_refused("magnify " + path("cube.obj") + " --view 10" + lens, "is not AZ,EL");
+}
+
+}  // namespace
+}  // namespace geolens

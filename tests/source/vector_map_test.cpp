@@ -1,0 +1,422 @@
+// The vector map: projection and framing, fills where the data says, the style file's schema and
+// its refusals, layers by zoom, and the labels: rank by local scale, no overlaps, nothing drawn
+// outside the output or outside the labels' boxes.
+
+#include "geolens/source/vector_map.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "geolens/core/errors.h"
+#include "geolens/io/geojson.h"
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_spec.h"
+#include "geolens/render/render.h"
+#include "geolens/source/map_labels.h"
+#include "geolens/source/map_style.h"
+#include "geolens/warp/warp_map.h"
+#include "geolens/warp/warp_mesh.h"
+#include "support/scratch_folder.h"
+
+using geolens::Image;
+using geolens::InvalidInput;
+using geolens::MapLabel;
+using geolens::PlacedLabel;
+using geolens::SourceFile;
+using geolens::SourceFileOptions;
+using geolens::TexelRegion;
+using geolens::WarpMap;
+using geolens::WarpMesh;
+
+namespace {
+
+using VectorMapTest = geolens::testing::ScratchFolderTest;
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+Image render_frame(const SourceFile& file) {
+  geolens::RenderOptions options;
+  options.width = file.frame_width;
+  options.height = file.frame_height;
+  options.source_scale = file.scale;
+  options.threads = 1;
+  return geolens::render(geolens::identity_warp(file.frame_width, file.frame_height), *file.source,
+                         options);
+}
+
+bool is(const uint8_t* p, int r, int g, int b, int tolerance = 8) {
+  return std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance &&
+         std::abs(p[2] - b) <= tolerance;
+}
+
+/// A 10 x 10 degree square at lon [0, 10], lat [0, 10], with a 2 x 2 hole at [4, 6].
+const char* kSquare = R"({"type": "FeatureCollection", "features": [
+  {"type": "Feature", "properties": {"kind": "land"}, "geometry": {"type": "Polygon",
+   "coordinates": [[[0, 0], [10, 0], [10, 10], [0, 10], [0, 0]],
+                   [[4, 4], [6, 4], [6, 6], [4, 6], [4, 4]]]}},
+  {"type": "Feature", "properties": {"kind": "road"}, "geometry": {"type": "LineString",
+   "coordinates": [[-5, -5], [15, -5]]}}]})";
+
+/// Plate carree, [-10, -10] to [20, 20] framed 300 x 300: 10 px per degree, north up.
+const char* kSquareStyle = R"({"background": "#0000ff", "projection": "plate_carree",
+  "extent": [-10, -10, 20, 20],
+  "layers": [{"where": {"kind": "land"}, "fill": "#ff0000"},
+             {"where": {"kind": ["road"]}, "stroke": "#00ff00", "width": 3, "min_zoom": 4}]})";
+
+TEST_F(VectorMapTest, PolygonFillsWhereItsCoordinatesSay) {
+  write_text(path("square.geojson"), kSquare);
+  write_text(path("style.json"), kSquareStyle);
+  SourceFileOptions options;
+  options.width = 300;
+  options.style = path("style.json");
+  const SourceFile file = geolens::open_source(path("square.geojson"), options);
+  EXPECT_EQ(file.kind, "vector map");
+  ASSERT_EQ(file.frame_width, 300);
+  ASSERT_EQ(file.frame_height, 300);
+  EXPECT_EQ(file.scale, 8.0);
+  // The square is x [100, 200] (lon 0 - 10), y [100, 200] (lat 10 - 0); its hole x, y [140, 160].
+  const Image frame = render_frame(file);
+  for (auto [x, y] : {std::pair{103, 103}, {196, 103}, {103, 196}, {196, 196}, {130, 150}})
+    EXPECT_TRUE(is(frame.at(x, y), 255, 0, 0)) << x << ", " << y;
+  for (auto [x, y] : {std::pair{97, 150}, {203, 150}, {150, 97}, {150, 203}, {150, 150}, {20, 20}})
+    EXPECT_TRUE(is(frame.at(x, y), 0, 0, 255)) << x << ", " << y;
+}
+
+TEST_F(VectorMapTest, LayerShowsOnlyOnTheLevelsOfItsZooms) {
+  const geolens::VectorData data = geolens::parse_geojson(kSquare, "square");
+  const SourceFile file =
+      geolens::vector_map_source(data, geolens::parse_map_style(kSquareStyle, "style"), 300);
+  // The road, lat -5 at y = 250, is drawn on levels of zoom >= 4 (levels 0, 1), not on level 3.
+  auto green_texels = [&](int level) {
+    const double s = 8.0 / (1 << level);
+    const TexelRegion r =
+        file.source->fetch(level, int(120 * s), int(245 * s), int(20 * s), int(10 * s));
+    int n = 0;
+    for (int y = r.y; y < r.y + r.height; ++y)
+      for (int x = r.x; x < r.x + r.width; ++x) n += is(r.at(x, y), 0, 255, 0, 40);
+    return n;
+  };
+  EXPECT_GT(green_texels(0), 0);
+  EXPECT_GT(green_texels(1), 0);
+  EXPECT_EQ(green_texels(2), 0);
+  EXPECT_EQ(green_texels(3), 0);
+}
+
+TEST_F(VectorMapTest, LayerDrawsOnlyItsGeometry) {
+  // A layer of lines, selecting every feature: the road (y = 250) is drawn, the square's
+  // outline (x = 100) is not.
+  const SourceFile file = geolens::vector_map_source(
+      geolens::parse_geojson(kSquare, "square"),
+      geolens::parse_map_style(R"({"background": "#0000ff", "projection": "plate_carree",
+        "extent": [-10, -10, 20, 20], "layers": [{"geometry": "line", "stroke": "#00ff00",
+        "fill": "#ff0000", "width": 8}]})",
+                               "style"),
+      300);
+  const Image frame = render_frame(file);
+  EXPECT_TRUE(is(frame.at(150, 250), 0, 255, 0, 40));
+  EXPECT_TRUE(is(frame.at(100, 150), 0, 0, 255));
+  EXPECT_TRUE(is(frame.at(150, 150), 0, 0, 255));
+}
+
+TEST_F(VectorMapTest, WebMercatorStretchesLatitudesAndSizeFollowsTheAspect) {
+  const geolens::VectorData data = geolens::parse_geojson(
+      R"({"type": "MultiPoint", "coordinates": [[0, 0], [60, 60]]})", "points");
+  const SourceFile file = geolens::vector_map_source(data, geolens::default_map_style(), 1000);
+  const double pi = 3.14159265358979323846;
+  const double y60 = std::log(std::tan(pi / 4 + pi / 6));  // 1.317
+  EXPECT_EQ(file.frame_width, 1000);
+  EXPECT_EQ(file.frame_height, std::lround(1000 * y60 / (pi / 3)));
+  // The default width without a size.
+  EXPECT_EQ(geolens::vector_map_source(data, geolens::default_map_style()).frame_width, 1024);
+}
+
+TEST_F(VectorMapTest, BothSidesGivenTheMapIsCentredNotStretched) {
+  const SourceFile file =
+      geolens::vector_map_source(geolens::parse_geojson(kSquare, "square"),
+                                 geolens::parse_map_style(kSquareStyle, "style"), 300, 600);
+  ASSERT_EQ(file.frame_height, 600);
+  // 10 px per degree both ways, the 300 x 300 extent centred: the square at x [100, 200],
+  // y [250, 350].
+  const Image frame = render_frame(file);
+  for (auto [x, y] : {std::pair{103, 253}, {196, 253}, {103, 346}, {196, 346}})
+    EXPECT_TRUE(is(frame.at(x, y), 255, 0, 0)) << x << ", " << y;
+  for (auto [x, y] : {std::pair{150, 246}, {150, 354}, {97, 300}, {203, 300}})
+    EXPECT_TRUE(is(frame.at(x, y), 0, 0, 255)) << x << ", " << y;
+}
+
+TEST_F(VectorMapTest, RendersTheSameOnSeveralThreads) {
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  SourceFileOptions options;
+  options.width = 300;
+  options.style = examples + "europe_style.json";
+  const SourceFile a = geolens::open_vector_map(examples + "europe.geojson", options);
+  const SourceFile b = geolens::open_vector_map(examples + "europe.geojson", options);
+  // A zoom-2 view of the middle, so that finer levels than the frame's are drawn too.
+  WarpMesh zoom = geolens::identity_warp(a.frame_width, a.frame_height);
+  zoom.screen *= 2;
+  zoom.screen.rowwise() -= Eigen::RowVector2d(a.frame_width / 2.0, a.frame_height / 2.0);
+  geolens::RenderOptions render_options;
+  render_options.width = a.frame_width;
+  render_options.height = a.frame_height;
+  render_options.source_scale = a.scale;
+  render_options.threads = 1;
+  const Image one = geolens::render(zoom, *a.source, render_options);
+  render_options.threads = 4;
+  const Image four = geolens::render(zoom, *b.source, render_options);
+  EXPECT_TRUE(one.pixels == four.pixels);
+}
+
+TEST_F(VectorMapTest, BadStyleIsRefusedNamingTheFileAndTheKey) {
+  write_text(path("square.geojson"), kSquare);
+  auto refusal = [&](const std::string& style) {
+    write_text(path("style.json"), style);
+    SourceFileOptions options;
+    options.style = path("style.json");
+    try {
+      geolens::open_vector_map(path("square.geojson"), options);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("not refused");
+  };
+  auto expect_names = [&](const std::string& what, const std::string& key) {
+    EXPECT_NE(what.find(path("style.json")), std::string::npos) << what;
+    EXPECT_NE(what.find(key), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  };
+  expect_names(refusal(R"({"layers": [{"fill": "#ff0000"}, {"fill": "#12"}]})"), "layers[1].fill");
+  expect_names(refusal(R"({"layers": [{"fill": "red"}]})"), "'red' is not a colour");
+  expect_names(refusal(R"({"layers": [{"colour": "#ff0000"}]})"), "layers[0].colour: unknown key");
+  expect_names(refusal(R"({"backgrund": "#ffffff"})"), "backgrund: unknown key");
+  expect_names(refusal(R"({"layers": [{"label": {"size": "big"}}]})"), "layers[0].label.size");
+  expect_names(refusal(R"({"layers": [{"min_zoom": 4, "max_zoom": 2}]})"), "min_zoom");
+  expect_names(refusal(R"({"projection": "lambert"})"), "projection");
+  expect_names(refusal(R"({"layers": [{"geometry": "curve"}]})"), "layers[0].geometry");
+  expect_names(refusal(R"({"extent": [10, 0, 5, 20]})"), "extent");
+  expect_names(refusal("{\"layers\": [\n{\"fill\": }]}"), "line 2");
+  // A malformed GeoJSON names its file and the element.
+  write_text(path("bad.geojson"), R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": null, "geometry": {"type": "Point", "coordinates": [1]}}]})");
+  try {
+    geolens::open_source(path("bad.geojson"));
+    FAIL() << "not refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find(path("bad.geojson")), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("feature 0"), std::string::npos) << e.what();
+  }
+  // Pixels are not degrees: a latitude of 300 is refused, naming the feature and the position.
+  write_text(path("pixels.geojson"), R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": null, "geometry": {"type": "Point", "coordinates": [1, 2]}},
+    {"type": "Feature", "properties": null, "geometry": {"type": "Point",
+     "coordinates": [120, 300]}}]})");
+  try {
+    geolens::open_source(path("pixels.geojson"));
+    FAIL() << "not refused";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path("pixels.geojson")), std::string::npos) << what;
+    EXPECT_NE(what.find("feature 1: the position (120, 300)"), std::string::npos) << what;
+  }
+}
+
+/// Labels of rank 0 - 5 on a grid of `n` x `n` points over a width x height frame, base 2.
+std::vector<MapLabel> grid_labels(int n, double width, double height) {
+  std::vector<MapLabel> labels;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      MapLabel l;
+      l.position = {(i + 0.5) * width / n, (j + 0.5) * height / n};
+      l.text = "P" + std::to_string(j * n + i);
+      l.rank = (i * 7 + j * 3) % 6;
+      l.style.base = 2;
+      l.style.size = 10;
+      labels.push_back(l);
+    }
+  return labels;
+}
+
+/// The identity on a width x height frame, magnified `zoom` times onto a zoom * width x
+/// zoom * height output.
+WarpMap uniform_zoom(int width, int height, double zoom) {
+  WarpMesh mesh = geolens::identity_warp(width, height);
+  mesh.screen *= zoom;
+  mesh.screen_width = int(width * zoom);
+  mesh.screen_height = int(height * zoom);
+  return WarpMap(mesh);
+}
+
+double max_rank(const std::vector<MapLabel>& labels, const std::vector<PlacedLabel>& placed) {
+  double r = -1;
+  for (const PlacedLabel& p : placed) r = std::max(r, labels[p.index].rank);
+  return r;
+}
+
+TEST_F(VectorMapTest, ZoomShowsLabelsOfHigherRank) {
+  const std::vector<MapLabel> labels = grid_labels(8, 400, 400);
+  const auto at1 = geolens::place_labels(labels, uniform_zoom(400, 400, 1), 400, 400);
+  const auto at2 = geolens::place_labels(labels, uniform_zoom(400, 400, 2), 800, 800);
+  const auto at4 = geolens::place_labels(labels, uniform_zoom(400, 400, 4), 1600, 1600);
+  ASSERT_FALSE(at1.empty());
+  EXPECT_EQ(max_rank(labels, at1), 2);  // base: ranks <= 2 at zoom 1
+  EXPECT_EQ(max_rank(labels, at2), 3);
+  EXPECT_EQ(max_rank(labels, at4), 4);
+  EXPECT_GT(at2.size(), at1.size());
+  EXPECT_GT(at4.size(), at2.size());
+  // A label of a layer shown from zoom 2 on: only at zoom 2 and above, whatever its rank.
+  std::vector<MapLabel> late(1, labels[0]);
+  late[0].rank = 0;
+  late[0].min_zoom = 2;
+  EXPECT_TRUE(geolens::place_labels(late, uniform_zoom(400, 400, 1), 400, 400).empty());
+  EXPECT_EQ(geolens::place_labels(late, uniform_zoom(400, 400, 2), 800, 800).size(), 1u);
+  for (const PlacedLabel& p : at2) {
+    EXPECT_NEAR(p.scale, 2, 1e-9);
+    // At its point's mapped position: its box touches the point's side at `offset` + halo.
+    const Eigen::Vector2d expected = 2 * labels[p.index].position;
+    EXPECT_NEAR(p.anchor.x(), expected.x(), 1e-9);
+    EXPECT_NEAR(p.anchor.y(), expected.y(), 1e-9);
+  }
+}
+
+TEST_F(VectorMapTest, PlacedLabelsDoNotOverlapAndStayInsideTheOutput) {
+  // Far too many labels for the room, some at the very edges.
+  std::vector<MapLabel> labels = grid_labels(20, 300, 200);
+  for (MapLabel& l : labels) l.style.base = 10;
+  for (double x : {0.0, 299.9}) {
+    MapLabel l;
+    l.position = {x, 100};
+    l.text = "Edge";
+    l.rank = -1;
+    labels.push_back(l);
+  }
+  const auto placed = geolens::place_labels(labels, uniform_zoom(300, 200, 1), 300, 200);
+  ASSERT_GT(placed.size(), 10u);
+  EXPECT_LT(placed.size(), labels.size());
+  int edges = 0;
+  for (size_t a = 0; a < placed.size(); ++a) {
+    const PlacedLabel& p = placed[a];
+    EXPECT_GE(p.x0, 0);
+    EXPECT_GE(p.y0, 0);
+    EXPECT_LE(p.x1, 300);
+    EXPECT_LE(p.y1, 200);
+    EXPECT_GT(p.x1 - p.x0, 5);
+    edges += labels[p.index].text == "Edge";
+    for (size_t b = a + 1; b < placed.size(); ++b) {
+      const PlacedLabel& q = placed[b];
+      EXPECT_FALSE(p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1)
+          << labels[p.index].text << " overlaps " << labels[q.index].text;
+    }
+  }
+  EXPECT_EQ(edges, 2);  // moved to the side that fits, not dropped nor cut
+
+  // Drawing changes pixels only inside the placed boxes, and some inside them.
+  Image image(300, 200, 3, 200);
+  const Image before = image;
+  geolens::draw_labels(image, labels, placed);
+  int changed_inside = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 300; ++x) {
+      const bool changed = !std::equal(image.at(x, y), image.at(x, y) + 3, before.at(x, y));
+      bool inside = false;
+      for (const PlacedLabel& p : placed)
+        inside = inside || (x + 1 > p.x0 && x < p.x1 && y + 1 > p.y0 && y < p.y1);
+      if (changed && !inside) ADD_FAILURE() << "pixel " << x << ", " << y << " outside the boxes";
+      changed_inside += changed && inside;
+    }
+  EXPECT_GT(changed_inside, 100);
+}
+
+TEST_F(VectorMapTest, OverlayDrawsTheDotsAndLabelsOfALabelledLayerUnmagnified) {
+  write_text(path("places.geojson"), R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"name": "Alpha", "scalerank": 0},
+     "geometry": {"type": "Point", "coordinates": [0, 0]}},
+    {"type": "Feature", "properties": {"name": "Beta", "scalerank": 1},
+     "geometry": {"type": "Point", "coordinates": [10, 5]}},
+    {"type": "Feature", "properties": {"name": "Gamma", "scalerank": 9},
+     "geometry": {"type": "Point", "coordinates": [5, 10]}}]})");
+  write_text(path("style.json"), R"({"extent": [-20, -20, 30, 30], "layers": [
+    {"radius": 3, "fill": "#000000", "label": {"text": "name", "base": 3}}]})");
+  SourceFileOptions options;
+  options.width = 400;
+  options.style = path("style.json");
+  const SourceFile file = geolens::open_source(path("places.geojson"), options);
+  ASSERT_TRUE(file.overlay);
+  const std::vector<MapLabel> points =
+      geolens::vector_map_labels(geolens::read_geojson(path("places.geojson")),
+                                 geolens::read_map_style(path("style.json")), 400);
+  ASSERT_EQ(points.size(), 3u);
+
+  // Magnified 2x: the frame onto an output twice its size.
+  const int width = 2 * file.frame_width, height = 2 * file.frame_height;
+  WarpMesh zoom = geolens::identity_warp(file.frame_width, file.frame_height);
+  zoom.screen *= 2;
+  zoom.screen_width = width;
+  zoom.screen_height = height;
+  geolens::RenderOptions render_options;
+  render_options.width = width;
+  render_options.height = height;
+  render_options.source_scale = file.scale;
+  Image output = geolens::render(zoom, *file.source, render_options);
+  const Image plain = output;
+  file.overlay(output, geolens::framed_warp_map(zoom, width, height));
+  for (const MapLabel& point : points) {
+    const Eigen::Vector2d at = 2 * point.position;
+    const int x = int(at.x()), y = int(at.y());
+    // The texture has no dot (the background), the overlay a black one of 3 screen pixels, not
+    // magnified: 5 pixels above its centre is still the background.
+    EXPECT_FALSE(is(plain.at(x, y), 0, 0, 0, 60)) << point.text;
+    EXPECT_TRUE(is(output.at(x, y), 0, 0, 0, 60)) << point.text;
+    EXPECT_TRUE(std::equal(output.at(x, y - 5), output.at(x, y - 5) + 3, plain.at(x, y - 5)))
+        << point.text;
+  }
+  double labels = -1;
+  for (const auto& [name, value] : file.counters())
+    if (name == "labels") labels = value;
+  EXPECT_EQ(labels, 2);  // Alpha and Beta; Gamma's rank 9 needs a scale of 2^6
+}
+
+TEST_F(VectorMapTest, ALensOverEuropeShowsNamesTheMapWithoutItLeavesOut) {
+  // The example map (Natural Earth, examples/europe.geojson) framed 1024 x 977, a zoom-4 lens
+  // over the Low Countries, as the README shows.
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  const geolens::VectorData data = geolens::read_geojson(examples + "europe.geojson");
+  const geolens::MapStyle style = geolens::read_map_style(examples + "europe_style.json");
+  const std::vector<MapLabel> labels = geolens::vector_map_labels(data, style, 1024, 977);
+  ASSERT_GT(labels.size(), 500u);
+
+  const auto names = [&](const std::vector<PlacedLabel>& placed) {
+    std::set<std::string> n;
+    for (const PlacedLabel& p : placed) n.insert(labels[p.index].text);
+    return n;
+  };
+  const std::set<std::string> plain = names(geolens::place_labels(
+      labels, geolens::framed_warp_map(geolens::identity_warp(1024, 977), 1024, 977), 1024, 977));
+  const geolens::GeometricLens lens(1024, 977);
+  const geolens::LensResult result = lens.solve(geolens::parse_lens_spec(
+      "circle:378,420,70:4", 2, geolens::Profile::kGaussian, 0, 1024, 977));
+  const WarpMap map = geolens::framed_warp_map(result.warp, 1024, 977);
+  const std::vector<PlacedLabel> placed = geolens::place_labels(labels, map, 1024, 977);
+
+  // Names shown in the focus (within the lens's magnified region, around its centre on screen)
+  // that the map without the lens shows nowhere.
+  const Eigen::Vector2d centre = *map.forward({378, 420});
+  std::vector<std::string> revealed;
+  for (const PlacedLabel& p : placed)
+    if ((p.anchor - centre).norm() < 70 * 4 && !plain.count(labels[p.index].text))
+      revealed.push_back(labels[p.index].text);
+  std::string list;
+  for (const std::string& name : revealed) list += name + " ";
+  EXPECT_GE(revealed.size(), 4u) << list;  // measured: Rotterdam Antwerpen Lille Cologne Luxembourg
+  for (const std::string& name : {"Rotterdam", "Antwerpen"})
+    EXPECT_NE(std::find(revealed.begin(), revealed.end(), name), revealed.end()) << name;
+  EXPECT_EQ(plain.count("Amsterdam"), 1u);
+}
+
+}  // namespace
