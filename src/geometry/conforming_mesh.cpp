@@ -288,8 +288,13 @@ void fan_out(Work& w, const std::vector<int>& apexes) {
         const Eigen::Vector2d& o = w.V[size_t(apex)];
         const Eigen::Vector2d ea = w.V[size_t(a)] - o, eb = w.V[size_t(b)] - o;
         if (std::atan2(cross(ea, eb), ea.dot(eb)) <= kMaxApexAngle) continue;
+        // Where the angle's bisector meets a - b (it divides a - b as |ea| to |eb|), so each split
+        // halves the angle: the midpoint of a - b, when the angle is near 180 degrees (a polygon's
+        // nearly straight corner), lies next to the apex and leaves a near-straight angle beside
+        // it, splitting on towards the apex in ever thinner slivers.
+        const double la = ea.norm(), lb = eb.norm();
         w.split_edge(a, b,
-                     w.add_vertex(0.5 * (w.V[size_t(a)] + w.V[size_t(b)]),
+                     w.add_vertex((lb * w.V[size_t(a)] + la * w.V[size_t(b)]) / (la + lb),
                                   w.sides[size_t(a)] & w.sides[size_t(b)], -1));
         split = true;
         break;
