@@ -60,6 +60,12 @@ class Input final : public WindowInput {
     if (key == Key::kHeatmap) viewer_.heatmap = !viewer_.heatmap;
     if (key == Key::kPolygon) viewer_.start_polygon();
     if (key == Key::kEscape) viewer_.cancel_polygon();
+    // The arrow keys orbit a 3D source's camera by 15 degrees (the view is rendered again).
+    constexpr double kStep = 15;
+    if (key == Key::kLeft) viewer_.try_orbit(-kStep, 0);
+    if (key == Key::kRight) viewer_.try_orbit(kStep, 0);
+    if (key == Key::kUp) viewer_.try_orbit(0, kStep);
+    if (key == Key::kDown) viewer_.try_orbit(0, -kStep);
   }
   void drop(const std::string& path) override { viewer_.try_open(path); }
 

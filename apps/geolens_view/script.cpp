@@ -137,6 +137,9 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
         a[0] != "polygon" && a[0] != "escape")
       throw InvalidInput("unknown key '" + a[0] +
                          "' (delete, fit, wireframe, heatmap, polygon, escape)");
+  } else if (c == "orbit") {
+    count(2, 2, "DAZIMUTH DELEVATION (degrees)");
+    numbers(0, 2);
   } else if (c == "screenshot") {
     count(1, 2, "PATH [panel]");
     check_screenshot_path(a[0], input_image, "screenshot");
@@ -147,7 +150,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
   } else {
     throw InvalidInput("unknown command '" + c +
                        "' (move, drag, zoom, radius, add, remove, select, set, mouse, press, "
-                       "release, scroll, key, polygon, export, screenshot, wait, quit)");
+                       "release, scroll, key, orbit, polygon, export, screenshot, wait, quit)");
   }
 }
 
@@ -288,6 +291,8 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
     if (a[0] == "heatmap") viewer.heatmap = !viewer.heatmap;
     if (a[0] == "polygon") viewer.start_polygon();
     if (a[0] == "escape") viewer.cancel_polygon();
+  } else if (c == "orbit") {
+    viewer.orbit(num(0), num(1));
   } else if (c == "screenshot") {
     actions.screenshots.push_back({a[0], a.size() == 2});
   } else if (c == "wait") {

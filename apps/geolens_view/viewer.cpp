@@ -17,6 +17,7 @@
 #include "geolens/render/annotate.h"
 #include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
+#include "geolens/render3d/camera.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_map.h"
 
@@ -99,7 +100,25 @@ void Viewer::open(Image image, const std::string& path) {
 }
 
 void Viewer::open_file(const std::string& path) {
-  const SourceFile file = open_source(path);
+  show_source(path, open_source(path));
+  azimuth_ = OrbitCamera{}.azimuth_degrees;
+  elevation_ = OrbitCamera{}.elevation_degrees;
+}
+
+bool Viewer::orbit(double d_azimuth, double d_elevation) {
+  if (!orbits_) return false;
+  const double azimuth = std::remainder(azimuth_ + d_azimuth, 360.0);
+  const double elevation = std::clamp(elevation_ + d_elevation, -85.0, 85.0);
+  SourceFileOptions options;
+  options.view = std::to_string(azimuth) + "," + std::to_string(elevation);
+  show_source(image_path_, open_source(image_path_, options));
+  azimuth_ = azimuth;
+  elevation_ = elevation;
+  return true;
+}
+
+void Viewer::show_source(const std::string& path, const SourceFile& file) {
+  orbits_ = file.kind == "mesh" || file.kind == "volume";
   if (const auto* image = dynamic_cast<const MipPyramid*>(file.source.get())) {
     open(image->level(0), path);  // the pixels as they are, not resampled by the renderer
     return;
@@ -119,8 +138,16 @@ void Viewer::open_file(const std::string& path) {
 }
 
 std::string Viewer::try_open(const std::string& path) {
+  return reported([&] { open_file(path); });
+}
+
+std::string Viewer::try_orbit(double d_azimuth, double d_elevation) {
+  return reported([&] { orbit(d_azimuth, d_elevation); });
+}
+
+std::string Viewer::reported(const std::function<void()>& action) {
   try {
-    open_file(path);
+    action();
     message.clear();
     return "";
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/source/source_file.h"
 #include "geolens/warp/warp_map.h"
 #include "lens_solver.h"
 
@@ -66,6 +68,13 @@ class Viewer {
   /// open_file(path); on failure keeps the current image and returns the one-line reason (empty
   /// on success). For the panel's Open field and a file dropped on the window.
   std::string try_open(const std::string& path);
+  /// Turns the camera of a 3D source (a mesh or a volume, opened at azimuth 30 and elevation 20
+  /// degrees) about the scene by `d_azimuth` and `d_elevation` degrees (elevation kept in
+  /// [-85, 85]) and shows the new view, rendered again; the lenses stay where they are on the
+  /// screen. Returns false, and does nothing, for any other source. Throws as open_file.
+  bool orbit(double d_azimuth, double d_elevation);
+  /// orbit, with a failure kept as try_open keeps it. For the arrow keys.
+  std::string try_orbit(double d_azimuth, double d_elevation);
   bool has_image() const { return image_.width > 0; }
   const Image& image() const { return image_; }
   const std::string& image_path() const { return image_path_; }
@@ -179,8 +188,15 @@ class Viewer {
   void polygon_click(bool double_click);
   const WarpMap* warp_map(int pane = 0);
 
+  // Runs `action`; its exception's message goes to `message` and is returned ("" on success).
+  std::string reported(const std::function<void()>& action);
+  // Shows the whole frame of `file`, opened from `path`, at zoom 1 (open_file).
+  void show_source(const std::string& path, const SourceFile& file);
+
   Image image_;
   std::string image_path_;
+  bool orbits_ = false;                 // the source is a 3D scene (orbit)
+  double azimuth_ = 0, elevation_ = 0;  // its camera, degrees
   std::uint64_t image_generation_ = 0;
   std::vector<Lens> lenses_;
   std::vector<std::string> specs_;  // per lens: its --lens text, or "" once it has none

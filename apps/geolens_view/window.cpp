@@ -80,6 +80,10 @@ Window::Window(int width, int height, const std::string& title, bool vsync) {
     if (key == GLFW_KEY_H) self.input_->key(Key::kHeatmap);
     if (key == GLFW_KEY_P) self.input_->key(Key::kPolygon);
     if (key == GLFW_KEY_ESCAPE) self.input_->key(Key::kEscape);
+    if (key == GLFW_KEY_LEFT) self.input_->key(Key::kLeft);
+    if (key == GLFW_KEY_RIGHT) self.input_->key(Key::kRight);
+    if (key == GLFW_KEY_UP) self.input_->key(Key::kUp);
+    if (key == GLFW_KEY_DOWN) self.input_->key(Key::kDown);
   });
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     Window& self = of(w);

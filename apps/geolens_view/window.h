@@ -20,7 +20,18 @@ struct WindowError : std::runtime_error {
 };
 
 /// Keys the viewer acts on.
-enum class Key { kDelete, kFit, kWireframe, kHeatmap, kPolygon, kEscape };
+enum class Key {
+  kDelete,
+  kFit,
+  kWireframe,
+  kHeatmap,
+  kPolygon,
+  kEscape,
+  kLeft,  // the arrow keys
+  kRight,
+  kUp,
+  kDown
+};
 
 /// What the window reports, in framebuffer pixels (origin top-left, y down). Events ImGui takes
 /// (the pointer over the panel, typing in a field) are not reported, except button releases.

@@ -387,6 +387,38 @@ TEST_F(View, SwitchingToAClassicLensChangesThePicture) {
   EXPECT_LT(mean_difference(fisheye, shot("direct.png", lens + "--method fisheye")), 0.5);
 }
 
+// A mesh opens as its rendered view, with lenses on it; the arrow keys' orbit turns the camera and
+// renders it again, the lens staying where it is on the screen; on an image orbit does nothing.
+TEST_F(View, AMeshOpensAndOrbitsUnderItsLens) {
+  // A box, 2 x 1 x 0.5, its faces lit differently as it turns.
+  std::ofstream(path("box.obj"))
+      << "v -1 -0.5 -0.25\nv 1 -0.5 -0.25\nv 1 0.5 -0.25\nv -1 0.5 -0.25\n"
+         "v -1 -0.5 0.25\nv 1 -0.5 0.25\nv 1 0.5 0.25\nv -1 0.5 0.25\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
+         "f 4 1 5 8\n";
+  auto view = [&](const std::string& input, const std::string& name, const std::string& lines,
+                  const std::string& lens = "circle:512,512,100:2") {
+    std::ofstream(path(name + ".txt"))
+        << "set outlines off\n"
+        << lines << "screenshot " << path(name + ".png") << "\nquit\n";
+    const ViewRun r =
+        run(input + " --size 320x240 --lens " + lens + " --script " + path(name + ".txt"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    return load_image(path(name + ".png"));
+  };
+  const Image front = view(path("box.obj"), "front", "");
+  const Image turned = view(path("box.obj"), "turned", "orbit 90 0\nwait\n");
+  const Image back = view(path("box.obj"), "back", "orbit 90 0\nwait\norbit -90 0\nwait\n");
+  EXPECT_GT(mean_difference(turned, front), 5.0);
+  EXPECT_LT(mean_difference(back, front), 0.5);  // the same camera, the same lens
+  // An image has no camera: the orbit changes nothing.
+  const std::string lens = "circle:160,120,24:2.5";
+  EXPECT_LT(mean_difference(view(path("in.png"), "image", "orbit 90 0\nwait\n", lens),
+                            view(path("in.png"), "still", "", lens)),
+            0.5);
+}
+
 TEST_F(View, ScreenshotAfterFramesWaitsForTheSolver) {
   const ViewRun r = run(path("in.png") + " --size 320x240 --lens circle:160,120,24:2.5 " +
                         "--screenshot " + path("out.png") + " --frames 1");
