@@ -26,6 +26,8 @@ fi
 common="halt_on_error=1:print_stacktrace=1:exitcode=86:log_path=$logs/report"
 export ASAN_OPTIONS="$common:detect_leaks=$leaks:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="$common"
+# Leaks in system libraries that keep caches for the process's life (scripts/lsan.supp says which).
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DCMAKE_CXX_FLAGS="${flags[*]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[*]}" -DGEOLENS_BUILD_BENCH=OFF \
