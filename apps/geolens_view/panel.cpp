@@ -222,6 +222,20 @@ void draw_overlays(Viewer& viewer) {
       list.AddText(at, IM_COL32(255, 255, 255, 255), name.c_str());
     }
   }
+  // The polygon lenses, drawn as the renderer draws circles: white over a dark halo, the
+  // selected one orange.
+  if (viewer.outlines) {
+    for (int pane = 0; pane < (viewer.split().empty() ? 1 : 2); ++pane) {
+      for (const Viewer::Outline& o : viewer.region_outlines(pane)) {
+        std::vector<ImVec2> points;
+        for (const Eigen::Vector2d& p : o.points) points.emplace_back(float(p.x()), float(p.y()));
+        const ImU32 ring = o.selected ? IM_COL32(255, 140, 26, 255) : IM_COL32(255, 255, 255, 255);
+        list.AddPolyline(points.data(), int(points.size()), IM_COL32(0, 0, 0, 110),
+                         ImDrawFlags_Closed, 4.0f);
+        list.AddPolyline(points.data(), int(points.size()), ring, ImDrawFlags_Closed, 2.0f);
+      }
+    }
+  }
   const std::vector<Eigen::Vector2d> outline = viewer.polygon_outline();
   if (outline.empty()) return;
   std::vector<ImVec2> points;

@@ -25,9 +25,9 @@ struct PanelRequests {
 /// Draws the panel (inside an ImGui frame) and applies what is changed in it to `viewer`.
 PanelRequests draw_panel(Viewer& viewer, PanelState& state);
 
-/// Draws over the picture, behind every ImGui window, panel or not: the outline of the polygon
-/// being drawn (its edges, the edge on to the pointer, a dot at each vertex), and while split
-/// each half's method.
+/// Draws over the picture, behind every ImGui window, panel or not: with outlines on, the polygon
+/// lenses' outlines (Viewer::region_outlines); the outline of the polygon being drawn (its edges,
+/// the edge on to the pointer, a dot at each vertex); and while split each half's method.
 void draw_overlays(Viewer& viewer);
 
 }  // namespace geolens::view

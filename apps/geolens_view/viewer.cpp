@@ -306,6 +306,32 @@ std::vector<Eigen::Vector2d> Viewer::polygon_outline() {
   return outline;
 }
 
+std::vector<Viewer::Outline> Viewer::region_outlines(int pane) {
+  std::vector<Outline> outlines;
+  const SolvedFrame& frame = pane == 0 ? frame_ : split_.frame;
+  const WarpMap* map = warp_map(pane);
+  if (!map) return outlines;
+  const Eigen::Vector2d at = origin() + pane * pane_offset();
+  constexpr double kPiece = 2;  // source pixels
+  for (size_t k = 0; k < frame.lenses.size(); ++k) {
+    const std::optional<std::vector<Eigen::Vector2d>> polygon = frame.lenses[k].region.outline();
+    if (!polygon) continue;
+    Outline outline;
+    // The frame's lenses are the viewer's while their count is (as the renderer's selection).
+    outline.selected = selected_ == k && frame.lenses.size() == lenses_.size();
+    for (size_t i = 0; i < polygon->size(); ++i) {
+      const Eigen::Vector2d a = (*polygon)[i], b = (*polygon)[(i + 1) % polygon->size()];
+      const int pieces = std::max(1, int(std::ceil((b - a).norm() / kPiece)));
+      for (int j = 0; j < pieces; ++j) {
+        const Eigen::Vector2d p = a + (b - a) * (double(j) / pieces);
+        outline.points.push_back(at + map->forward(p).value_or(p) * scale());
+      }
+    }
+    outlines.push_back(std::move(outline));
+  }
+  return outlines;
+}
+
 void Viewer::polygon_click(bool double_click) {
   if (!double_click) {
     // A vertex on the last one (the first click of a double click there) is not repeated.

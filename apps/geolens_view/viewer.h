@@ -114,6 +114,15 @@ class Viewer {
   /// Where the vertices clicked so far are shown (through the frame's warp), then the pointer:
   /// window pixels, for the outline of the polygon being drawn. Empty when not drawing.
   std::vector<Eigen::Vector2d> polygon_outline();
+  /// A polygon lens's outline as shown (a circle's the renderer draws): its edges cut into pieces
+  /// of at most 2 source pixels and mapped through the frame's warp, window pixels, so that it
+  /// bends with the picture; `selected` for the selected lens.
+  struct Outline {
+    std::vector<Eigen::Vector2d> points;  ///< closed, not repeated
+    bool selected = false;
+  };
+  /// Those of the polygon lenses of the frame shown in `pane` (0; 1 the right half while split).
+  std::vector<Outline> region_outlines(int pane = 0);
 
   // --- solver options ---
   void set_method(const std::string& method);

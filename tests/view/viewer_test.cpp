@@ -243,6 +243,41 @@ TEST_F(View, APolygonDrawnByScriptIsMagnifiedAndExportedAsAPolygonLens) {
   EXPECT_LT(mean_difference(shot("again.png", line), drawn), 1.0);
 }
 
+// With outlines on, a polygon lens is outlined where the picture shows its boundary: white
+// pixels along the magnified polygon, none elsewhere.
+TEST_F(View, APolygonLensIsOutlinedWhereThePictureShowsIt) {
+  std::ofstream(path("square.txt")) << "140 100\n180 100\n180 140\n140 140\n";
+  const std::string lens = "--lens polygon:" + path("square.txt") + ":2 ";
+  // Overlays are drawn with the panel's user interface: a "panel" screenshot, the panel hidden.
+  auto overlaid = [&](const std::string& name, const char* outlines) {
+    std::ofstream(path(name + ".txt"))
+        << "set panel off\nset outlines " << outlines << "\nscreenshot " << path(name + ".png")
+        << " panel\nquit\n";
+    const ViewRun r =
+        run(path("in.png") + " --size 320x240 " + lens + "--script " + path(name + ".txt"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    return load_image(path(name + ".png"));
+  };
+  const Image off = overlaid("off", "off");
+  const Image on = overlaid("on", "on");
+  // The square magnified 2x about its centre (160, 120): sides at x, y = 160 -+ 40, 120 -+ 40.
+  int near_side = 0, elsewhere = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const uint8_t* p = on.at(x, y);
+      const uint8_t* q = off.at(x, y);
+      const bool white = p[0] > 240 && p[1] > 240 && p[2] > 240 &&
+                         std::abs(int(p[0]) - int(q[0])) + std::abs(int(p[2]) - int(q[2])) > 60;
+      if (!white) continue;
+      const double dx = std::min(std::abs(x + 0.5 - 120), std::abs(x + 0.5 - 200));
+      const double dy = std::min(std::abs(y + 0.5 - 80), std::abs(y + 0.5 - 160));
+      const bool on_side = (dx < 3 && y > 76 && y < 164) || (dy < 3 && x > 116 && x < 204);
+      (on_side ? near_side : elsewhere)++;
+    }
+  EXPECT_GT(near_side, 4 * 60);  // most of the 320 px of outline
+  EXPECT_EQ(elsewhere, 0);
+}
+
 TEST_F(View, TheHeatmapColoursShapeDistortionWithTheColoursOfCompare) {
   const std::string lens = "--lens circle:160,120,24:2.5 ";
   const Image heat = shot("heat.png", lens, "set heatmap on\n");
