@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "geolens/core/errors.h"
@@ -28,19 +29,21 @@ namespace {
 
 struct Args {
   std::string image, model = "focus", method = "geometric", split, script, screenshot, size;
+  std::string frame, style, view, transfer;  // how a source file is opened
   std::vector<std::string> lenses;
   int mesh = 100, frames = 2;
   bool stats = false;
 };
 
-// "WxH", each side in [64, 8192].
-std::pair<int, int> parse_size(const std::string& text) {
+// "WxH" given to `option`, each side in [lo, hi].
+std::pair<int, int> parse_size(const std::string& text, const std::string& option, int lo, int hi) {
   const size_t x = text.find('x');
-  require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
-  const double w = parse_number(text.substr(0, x), "--size width", true);
-  const double h = parse_number(text.substr(x + 1), "--size height", true);
-  require(w >= 64 && w <= 8192 && h >= 64 && h <= 8192, "--size",
-          "sides must be in [64, 8192], got '" + text + "'");
+  require(x != std::string::npos, option.c_str(), "expected WxH, got '" + text + "'");
+  const double w = parse_number(text.substr(0, x), option + " width", true);
+  const double h = parse_number(text.substr(x + 1), option + " height", true);
+  require(w >= lo && w <= hi && h >= lo && h <= hi, option.c_str(),
+          "sides must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
+              text + "'");
   return {int(w), int(h)};
 }
 
@@ -86,11 +89,19 @@ int run(const Args& a) {
   require(a.script.empty() || !a.image.empty(), "--script", "needs an IMAGE");
   require(a.frames >= 1, "--frames", "must be >= 1, got " + std::to_string(a.frames));
   if (!a.screenshot.empty()) check_screenshot_path(a.screenshot, a.image, "--screenshot");
-  const auto [width, height] = a.size.empty() ? std::pair{1280, 800} : parse_size(a.size);
+  const auto [width, height] =
+      a.size.empty() ? std::pair{1280, 800} : parse_size(a.size, "--size", 64, 8192);
+  SourceFileOptions source;
+  if (!a.frame.empty())
+    std::tie(source.width, source.height) = parse_size(a.frame, "--frame", 1, 16384);
+  source.style = a.style;
+  source.view = a.view;
+  source.transfer = a.transfer;
   LensOptions options;
   options.mesh = a.mesh;
   options.model = parse_lens_model(a.model);
   Viewer viewer(options, a.method);
+  viewer.source_options = source;
   viewer.set_split(a.split);
   if (!a.image.empty()) viewer.open_file(a.image);
   for (const std::string& spec : a.lenses) {
@@ -238,7 +249,15 @@ int main(int argc, char** argv) {
   CLI::App app{"geolens-view: drag geometric focus+context lenses across an image"};
   app.set_version_flag("--version", std::string("geolens-view ") + GEOLENS_VERSION);
   Args a;
-  app.add_option("image", a.image, "image to show (PNG or JPEG)");
+  app.add_option("image", a.image,
+                 "image (PNG or JPEG) or source file (a tile folder, .levels, .svg, .geojson, "
+                 ".obj, .ply, .nii, .nii.gz, .nrrd) to show");
+  app.add_option("--frame", a.frame,
+                 "frame WxH of a source without pixels of its own (SVG, vector map, 3D) or the "
+                 "pyramid level nearest it (default: the source's own)");
+  app.add_option("--style", a.style, "style file (JSON) of a vector map");
+  app.add_option("--view", a.view, "camera of a mesh or a volume: AZ,EL in degrees");
+  app.add_option("--transfer", a.transfer, "transfer function of a volume: ct, mri or a file");
   app.add_option("--lens", a.lenses,
                  "circle:CX,CY,R[:ZOOM] (source pixels), polygon:FILE[:ZOOM] or "
                  "mask:FILE[:ZOOM]; repeatable");

@@ -100,16 +100,18 @@ void Viewer::open(Image image, const std::string& path) {
 }
 
 void Viewer::open_file(const std::string& path) {
-  show_source(path, open_source(path));
-  azimuth_ = OrbitCamera{}.azimuth_degrees;
-  elevation_ = OrbitCamera{}.elevation_degrees;
+  show_source(path, open_source(path, source_options));
+  OrbitCamera camera;
+  if (orbits_) parse_view(source_options.view, camera);  // valid: the scene was opened with it
+  azimuth_ = camera.azimuth_degrees;
+  elevation_ = camera.elevation_degrees;
 }
 
 bool Viewer::orbit(double d_azimuth, double d_elevation) {
   if (!orbits_) return false;
   const double azimuth = std::remainder(azimuth_ + d_azimuth, 360.0);
   const double elevation = std::clamp(elevation_ + d_elevation, -85.0, 85.0);
-  SourceFileOptions options;
+  SourceFileOptions options = source_options;
   options.view = std::to_string(azimuth) + "," + std::to_string(elevation);
   show_source(image_path_, open_source(image_path_, options));
   azimuth_ = azimuth;

@@ -61,15 +61,19 @@ class Viewer {
   /// Shows `image` (read from `path`); the lenses that no longer fit are dropped. Throws
   /// InvalidInput for an empty image.
   void open(Image image, const std::string& path);
-  /// Reads `path`, an image or any source file open_source reads (source/source_file.h; with its
-  /// default frame, its whole frame rendered at zoom 1 with its overlay), and shows it. Throws
+  /// How open_file opens a source file (the frame of one without pixels, a map's style, a
+  /// scene's camera, a volume's transfer function): the command line's.
+  SourceFileOptions source_options;
+  /// Reads `path`, an image or any source file open_source reads (source/source_file.h; with
+  /// source_options, its whole frame rendered at zoom 1 with its overlay), and shows it. Throws
   /// InvalidInput when it cannot be read.
   void open_file(const std::string& path);
   /// open_file(path); on failure keeps the current image and returns the one-line reason (empty
   /// on success). For the panel's Open field and a file dropped on the window.
   std::string try_open(const std::string& path);
-  /// Turns the camera of a 3D source (a mesh or a volume, opened at azimuth 30 and elevation 20
-  /// degrees) about the scene by `d_azimuth` and `d_elevation` degrees (elevation kept in
+  /// Turns the camera of a 3D source (a mesh or a volume, opened at source_options.view, by
+  /// default azimuth 30 and elevation 20 degrees) about the scene by `d_azimuth` and `d_elevation`
+  /// degrees (elevation kept in
   /// [-85, 85]) and shows the new view, rendered again; the lenses stay where they are on the
   /// screen. Returns false, and does nothing, for any other source. Throws as open_file.
   bool orbit(double d_azimuth, double d_elevation);

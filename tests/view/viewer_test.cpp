@@ -454,6 +454,25 @@ TEST_F(View, AMeshOpensAndOrbitsUnderItsLens) {
             0.5);
 }
 
+// A vector map opens framed by --frame in its --style: a lens inside that frame is shown, one
+// beyond it refused as beyond a 400 x 381 picture.
+TEST_F(View, ASourceOpensWithItsFrameAndStyle) {
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  const std::string map = examples + "europe.geojson --style " + examples +
+                          "europe_style.json --frame 400x381 --size 320x240 ";
+  const ViewRun shown =
+      run(map + "--lens circle:150,165,25:3 --screenshot " + path("map.png") + " --frames 1");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  // The style's sea, #a9cbe6, at the picture's top left corner: the frame fitted to the window is
+  // 252 px wide (240 / 381 of 400), 34 px from its side.
+  const Image out = load_image(path("map.png"));
+  const uint8_t* sea = out.at(38, 3);
+  EXPECT_NEAR(sea[0], 0xa9, 12);
+  EXPECT_NEAR(sea[1], 0xcb, 12);
+  EXPECT_NEAR(sea[2], 0xe6, 12);
+  expect_refused(run(map + "--lens circle:500,300,20 --screenshot " + path("x.png")), 2, "400x381");
+}
+
 TEST_F(View, ScreenshotAfterFramesWaitsForTheSolver) {
   const ViewRun r = run(path("in.png") + " --size 320x240 --lens circle:160,120,24:2.5 " +
                         "--screenshot " + path("out.png") + " --frames 1");
