@@ -1,15 +1,15 @@
 #include "geolens/render3d/ply_file.h"
 
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
+#include "render3d/voxel_types.h"
 
 namespace geolens {
 
@@ -17,12 +17,12 @@ namespace {
 
 enum class Format { ascii, little_endian, big_endian };
 
-enum class Scalar { int8, uint8, int16, uint16, int32, uint32, float32, float64, none };
+using detail::VoxelType;
 
 struct Property {
   std::string name;
-  Scalar type = Scalar::none;        ///< the value's type, or the list's entries' type
-  Scalar count_type = Scalar::none;  ///< the list's length type; none for a scalar property
+  std::optional<VoxelType> type;        ///< the value's type, or the list's entries' type
+  std::optional<VoxelType> count_type;  ///< the list's length type; none for a scalar property
 };
 
 struct Element {
@@ -31,36 +31,16 @@ struct Element {
   std::vector<Property> properties;
 };
 
-Scalar scalar_named(const std::string& name) {
-  if (name == "char" || name == "int8") return Scalar::int8;
-  if (name == "uchar" || name == "uint8") return Scalar::uint8;
-  if (name == "short" || name == "int16") return Scalar::int16;
-  if (name == "ushort" || name == "uint16") return Scalar::uint16;
-  if (name == "int" || name == "int32") return Scalar::int32;
-  if (name == "uint" || name == "uint32") return Scalar::uint32;
-  if (name == "float" || name == "float32") return Scalar::float32;
-  if (name == "double" || name == "float64") return Scalar::float64;
-  return Scalar::none;
-}
-
-int bytes_of(Scalar type) {
-  switch (type) {
-    case Scalar::int8:
-    case Scalar::uint8:
-      return 1;
-    case Scalar::int16:
-    case Scalar::uint16:
-      return 2;
-    case Scalar::int32:
-    case Scalar::uint32:
-    case Scalar::float32:
-      return 4;
-    case Scalar::float64:
-      return 8;
-    case Scalar::none:
-      break;
-  }
-  return 0;
+std::optional<VoxelType> scalar_named(const std::string& name) {
+  if (name == "char" || name == "int8") return VoxelType::int8;
+  if (name == "uchar" || name == "uint8") return VoxelType::uint8;
+  if (name == "short" || name == "int16") return VoxelType::int16;
+  if (name == "ushort" || name == "uint16") return VoxelType::uint16;
+  if (name == "int" || name == "int32") return VoxelType::int32;
+  if (name == "uint" || name == "uint32") return VoxelType::uint32;
+  if (name == "float" || name == "float32") return VoxelType::float32;
+  if (name == "double" || name == "float64") return VoxelType::float64;
+  return std::nullopt;
 }
 
 /// Reads the rows of the body, binary or ASCII, one value at a time.
@@ -89,45 +69,20 @@ class BodyReader {
     }
   }
 
-  double value(Scalar type) {
+  double value(VoxelType type) {
     if (format_ == Format::ascii) {
       double v = 0;
       if (!(line_ >> v)) fail("has too few values or one that is not a number");
       return v;
     }
-    const int n = bytes_of(type);
-    if (at_ + size_t(n) > text_.size()) fail("the file ends");
-    unsigned char b[8];
-    std::memcpy(b, text_.data() + at_, size_t(n));
-    at_ += size_t(n);
+    const size_t n = size_t(detail::voxel_bytes(type));
+    if (at_ + n > text_.size()) fail("the file ends");
     const bool swap =
         (format_ == Format::big_endian) == (std::endian::native == std::endian::little);
-    if (swap)
-      for (int i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
-    switch (type) {
-      case Scalar::int8:
-        return double(int8_t(b[0]));
-      case Scalar::uint8:
-        return double(b[0]);
-      case Scalar::int16:
-        return double(std::bit_cast<int16_t>(std::array{b[0], b[1]}));
-      case Scalar::uint16:
-        return double(std::bit_cast<uint16_t>(std::array{b[0], b[1]}));
-      case Scalar::int32:
-        return double(std::bit_cast<int32_t>(std::array{b[0], b[1], b[2], b[3]}));
-      case Scalar::uint32:
-        return double(std::bit_cast<uint32_t>(std::array{b[0], b[1], b[2], b[3]}));
-      case Scalar::float32:
-        return double(std::bit_cast<float>(std::array{b[0], b[1], b[2], b[3]}));
-      case Scalar::float64: {
-        double d;
-        std::memcpy(&d, b, 8);
-        return d;
-      }
-      case Scalar::none:
-        break;
-    }
-    return 0;
+    const double v = detail::decode_sample(
+        reinterpret_cast<const unsigned char*>(text_.data()) + at_, type, swap);
+    at_ += n;
+    return v;
   }
 
   [[noreturn]] void fail(const std::string& what) const {
@@ -205,13 +160,13 @@ TriangleMesh load_ply(const std::string& path) {
         in >> count_type >> entry_type >> property.name;
         property.count_type = scalar_named(count_type);
         property.type = scalar_named(entry_type);
-        require(property.count_type != Scalar::none && property.count_type != Scalar::float32 &&
-                    property.count_type != Scalar::float64 && property.type != Scalar::none,
+        require(property.count_type && *property.count_type != VoxelType::float32 &&
+                    *property.count_type != VoxelType::float64 && property.type,
                 f, bad + "unknown list types");
       } else {
         in >> property.name;
         property.type = scalar_named(type);
-        require(property.type != Scalar::none, f, bad + "unknown type '" + type + "'");
+        require(property.type.has_value(), f, bad + "unknown type '" + type + "'");
       }
       require(!property.name.empty(), f, bad + "the property has no name");
       elements.back().properties.push_back(property);
@@ -237,13 +192,13 @@ TriangleMesh load_ply(const std::string& path) {
   const int px = find(*vertex, "x"), py = find(*vertex, "y"), pz = find(*vertex, "z");
   require(px >= 0 && py >= 0 && pz >= 0, f, where + "the vertex element lacks x, y or z");
   for (const int p : {px, py, pz})
-    require(vertex->properties[size_t(p)].count_type == Scalar::none, f,
+    require(!vertex->properties[size_t(p)].count_type, f,
             where + "vertex coordinates must be scalars");
   const int pnx = find(*vertex, "nx"), pny = find(*vertex, "ny"), pnz = find(*vertex, "nz");
   const bool normals = pnx >= 0 && pny >= 0 && pnz >= 0;
   int list = find(*face, "vertex_indices");
   if (list < 0) list = find(*face, "vertex_index");
-  require(list >= 0 && face->properties[size_t(list)].count_type != Scalar::none, f,
+  require(list >= 0 && face->properties[size_t(list)].count_type.has_value(), f,
           where + "the face element has no vertex_indices list");
   require(vertex->count <= (1LL << 31) - 1 && face->count <= (1LL << 30), f,
           where + "too many vertices or faces");
@@ -261,16 +216,16 @@ TriangleMesh load_ply(const std::string& path) {
       std::vector<int> corners;
       for (size_t p = 0; p < e.properties.size(); ++p) {
         const Property& property = e.properties[p];
-        if (property.count_type == Scalar::none) {
-          values[p] = body.value(property.type);
+        if (!property.count_type) {
+          values[p] = body.value(*property.type);
           continue;
         }
-        const double count = body.value(property.count_type);
+        const double count = body.value(*property.count_type);
         if (count < 0 || count != std::floor(count) || count > 1e6)
           body.fail("a list length of " + std::to_string(count));
         const bool is_corners = &e == face && int(p) == list;
         for (int i = 0; i < int(count); ++i) {
-          const double index = body.value(property.type);
+          const double index = body.value(*property.type);
           if (!is_corners) continue;
           if (index < 0 || index >= double(vertex->count) || index != std::floor(index))
             body.fail("names vertex " + std::to_string(index) + ", outside [0, " +

@@ -47,16 +47,20 @@ std::string voxel_type_name(VoxelType type) {
 
 namespace {
 
+// The T at `data`, its bytes reversed first when `swap`.
+template <typename T>
+T load(const unsigned char* data, bool swap) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, data, sizeof(T));
+  if (swap) std::reverse(bytes, bytes + sizeof(T));
+  T value;
+  std::memcpy(&value, bytes, sizeof(T));
+  return value;
+}
+
 template <typename T>
 void decode(const unsigned char* data, size_t count, bool swap, float* out) {
-  unsigned char bytes[sizeof(T)];
-  for (size_t i = 0; i < count; ++i) {
-    std::memcpy(bytes, data + i * sizeof(T), sizeof(T));
-    if (swap) std::reverse(bytes, bytes + sizeof(T));
-    T value;
-    std::memcpy(&value, bytes, sizeof(T));
-    out[i] = float(value);
-  }
+  for (size_t i = 0; i < count; ++i) out[i] = float(load<T>(data + i * sizeof(T), swap));
 }
 
 }  // namespace
@@ -80,6 +84,28 @@ void decode_voxels(const unsigned char* data, size_t count, VoxelType type, bool
     case VoxelType::float64:
       return decode<double>(data, count, swap, out);
   }
+}
+
+double decode_sample(const unsigned char* data, VoxelType type, bool swap) {
+  switch (type) {
+    case VoxelType::int8:
+      return load<int8_t>(data, swap);
+    case VoxelType::uint8:
+      return load<uint8_t>(data, swap);
+    case VoxelType::int16:
+      return load<int16_t>(data, swap);
+    case VoxelType::uint16:
+      return load<uint16_t>(data, swap);
+    case VoxelType::int32:
+      return load<int32_t>(data, swap);
+    case VoxelType::uint32:
+      return load<uint32_t>(data, swap);
+    case VoxelType::float32:
+      return load<float>(data, swap);
+    case VoxelType::float64:
+      return load<double>(data, swap);
+  }
+  return 0;
 }
 
 }  // namespace geolens::detail

@@ -1,5 +1,5 @@
 #pragma once
-// The sample types of volume files, decoded to float (private to the volume readers).
+// The binary sample types of volume and PLY files, decoded (private to render3d's readers).
 
 #include <cstddef>
 #include <cstdint>
@@ -15,5 +15,8 @@ std::string voxel_type_name(VoxelType type);
 /// Decodes `count` samples of `type` at `data` into `out`, swapping each sample's bytes first
 /// when `swap`.
 void decode_voxels(const unsigned char* data, size_t count, VoxelType type, bool swap, float* out);
+
+/// The one sample of `type` at `data`, its bytes swapped first when `swap`, exactly as a double.
+double decode_sample(const unsigned char* data, VoxelType type, bool swap);
 
 }  // namespace geolens::detail
