@@ -111,13 +111,12 @@ int run_compare(const CompareArgs& a) {
 
   // Every output to a temporary file; all renamed into place once every one is written.
   for (const ComparedMethod& m : comparison.methods) {
-    const Image image = comparison_output(comparison, m, *source.source, source.scale);
+    const Image image = comparison_output(comparison, m, source);
     save_image(files.staged((dir / (m.name + "." + a.format)).string()), image, a.jpeg_quality);
     save_image(files.staged((dir / (m.name + "_heatmap." + a.format)).string()),
                comparison_heatmap(m, image, heat_max), a.jpeg_quality);
   }
-  save_image(files.staged(panel),
-             comparison_panel(comparison, *source.source, heat_max, a.tile, source.scale),
+  save_image(files.staged(panel), comparison_panel(comparison, source, heat_max, a.tile),
              a.jpeg_quality);
   write_file(files.staged(json), comparison_json(comparison));
   write_file(files.staged(md), comparison_markdown(comparison, title));

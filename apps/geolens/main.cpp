@@ -92,18 +92,13 @@ int run_magnify(const MagnifyArgs& a) {
   render_options.width = width;
   render_options.height = height;
   render_options.threads = options.flatten.threads;
-  render_options.source_scale = source.scale;
-  render_options.level_band = source.level_band;
-  // A warp rendered, then what goes over it unwarped: the source's own overlay (a vector map's
-  // labels) and the --overlay features, mapped through the warp as rendered (grey made RGB).
+  // A warp rendered with the source's own overlay (a vector map's labels), then the --overlay
+  // features, mapped through the warp as rendered (grey made RGB).
   auto picture = [&](const WarpMesh& warp) {
-    Image image = render(warp, *source.source, render_options);
-    if (!source.overlay && !overlay) return image;
-    if (image.channels < 3) image = to_rgb(image);
-    const WarpMap map = framed_warp_map(warp, width, height);
-    if (source.overlay) source.overlay(image, map);
+    Image image = render(warp, source, render_options);
     if (overlay) {
-      const MappedFeatures mapped = map_features(*overlay, map);
+      if (image.channels < 3) image = to_rgb(image);
+      const MappedFeatures mapped = map_features(*overlay, framed_warp_map(warp, width, height));
       if (&warp == &result.warp)
         warn_about_losses(mapped.losses, "the overlay", "the source image");
       draw_overlay(image, mapped.data);

@@ -128,15 +128,7 @@ void Viewer::show_source(const std::string& path, const SourceFile& file) {
   RenderOptions options;
   options.width = file.frame_width;
   options.height = file.frame_height;
-  options.source_scale = file.scale;
-  options.level_band = file.level_band;
-  const WarpMesh identity = identity_warp(file.frame_width, file.frame_height);
-  Image frame = render(identity, *file.source, options);
-  if (file.overlay) {
-    if (frame.channels < 3) frame = to_rgb(frame);
-    file.overlay(frame, framed_warp_map(identity, file.frame_width, file.frame_height));
-  }
-  open(std::move(frame), path);
+  open(render(identity_warp(file.frame_width, file.frame_height), file, options), path);
 }
 
 std::string Viewer::try_open(const std::string& path) {

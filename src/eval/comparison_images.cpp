@@ -31,9 +31,8 @@ void require_panel_tile(int tile, const char* function) {
 }
 
 Image comparison_output(const Comparison& comparison, const ComparedMethod& method,
-                        const Source& source, double source_scale) {
+                        const SourceFile& source) {
   RenderOptions options;
-  options.source_scale = source_scale;
   options.width = comparison.width;
   options.height = comparison.height;
   return to_rgb(render(method.warp, source, options));
@@ -45,8 +44,8 @@ Image comparison_heatmap(const ComparedMethod& method, const Image& output, doub
       heat_max, method.name + ": shape distortion s1/s2 - 1");
 }
 
-Image comparison_panel(const Comparison& comparison, const Source& source, double heat_max,
-                       int tile, double source_scale) {
+Image comparison_panel(const Comparison& comparison, const SourceFile& source, double heat_max,
+                       int tile) {
   require_panel_tile(tile, "comparison_panel");
   const std::vector<ComparedMethod>& methods = comparison.methods;
   Eigen::AlignedBox2d box;
@@ -64,7 +63,6 @@ Image comparison_panel(const Comparison& comparison, const Source& source, doubl
   Image panel(columns * cell_width + gap, rows * cell_height + gap, 3, 255);
   RenderOptions options;
   options.width = options.height = tile;
-  options.source_scale = source_scale;
   const std::array<uint8_t, 3> ink = {20, 20, 20};
 
   const WarpMesh identity = identity_warp(comparison.width, comparison.height);

@@ -206,7 +206,7 @@ TEST(ComparisonReport, MarkdownHasARowPerMethod) {
 
 TEST(ComparisonImages, OutputsHeatmapsAndPanelHaveTheDocumentedSizes) {
   const Comparison& c = circle_comparison();
-  const MipPyramid pyramid(pattern());
+  const SourceFile pyramid = image_source(pattern());
   const double heat_max = comparison_heat_max(c);
   double largest = 0;
   for (const ComparedMethod& m : c.methods)

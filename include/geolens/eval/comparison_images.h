@@ -6,17 +6,17 @@
 
 #include "geolens/eval/comparison.h"
 #include "geolens/io/image.h"
-#include "geolens/render/render.h"
+#include "geolens/source/source_file.h"
 
 namespace geolens {
 
 /// The panel tile side must be in [64, 1024] pixels; throws InvalidInput naming `function`.
 void require_panel_tile(int tile, const char* function);
 
-/// The method's output: its warp rendered from `source` (the comparison's; `source_scale` its
-/// texels per frame pixel, RenderOptions::source_scale) at the comparison's size, RGB.
+/// The method's output: its warp rendered from `source` (the comparison's, framed at its size;
+/// render(WarpMesh, SourceFile, RenderOptions)) at the comparison's size, RGB.
 Image comparison_output(const Comparison& comparison, const ComparedMethod& method,
-                        const Source& source, double source_scale = 1);
+                        const SourceFile& source);
 
 /// The method's shape distortion s1 / s2 - 1 per triangle over `output` (comparison_output),
 /// blue 0 to red `heat_max` (> 0), flipped triangles black, with a scale titled
@@ -29,9 +29,8 @@ Image comparison_heatmap(const ComparedMethod& method, const Image& output, doub
 /// (0 to `heat_max`, > 0) below. Every picture shows the same square, 1.3 times the extent of the
 /// targets' disks. RGB, 4 (tile + 6) + 6 pixels wide; rows = ceil((methods + 1) / 4) of
 /// 4 L + 2 tile + 24 pixels (L = 22 for tile >= 176, else 11), plus 6 pixels and the scale.
-/// `source` and `source_scale` as for comparison_output. Throws InvalidInput for `tile` outside
-/// [64, 1024].
-Image comparison_panel(const Comparison& comparison, const Source& source, double heat_max,
-                       int tile = 256, double source_scale = 1);
+/// `source` as for comparison_output. Throws InvalidInput for `tile` outside [64, 1024].
+Image comparison_panel(const Comparison& comparison, const SourceFile& source, double heat_max,
+                       int tile = 256);
 
 }  // namespace geolens

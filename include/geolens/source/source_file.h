@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geolens/io/image.h"
+#include "geolens/render/render.h"
 #include "geolens/source/source.h"
 
 namespace geolens {
@@ -57,5 +58,11 @@ SourceFile image_source(const Image& image);
 /// else as an image (PNG or JPEG by content). Throws InvalidInput naming the file and, where it
 /// can, the element or line at fault.
 SourceFile open_source(const std::string& path, const SourceFileOptions& options = {});
+
+/// `warp` (its source in frame pixels) rendered from `file` as every tool shows it: from
+/// file.source at file.scale and file.level_band (which replace those of `options`) at
+/// options.width x options.height, then file.overlay drawn over it (the output made RGB first).
+/// Throws as render() does.
+Image render(const WarpMesh& warp, const SourceFile& file, RenderOptions options);
 
 }  // namespace geolens
