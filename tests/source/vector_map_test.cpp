@@ -1,6 +1,6 @@
 // The vector map: projection and framing, fills where the data says, the style file's schema and
 // its refusals, layers by zoom, and the labels: rank by local scale, no overlaps, nothing drawn
-// outside the output or outside the labels' boxes.
+// outside the output or outside the labels' boxes; and no seam where a lens changes the level.
 
 #include "geolens/source/vector_map.h"
 
@@ -9,12 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
+#include "geolens/lens/classic_lens.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/render/render.h"
@@ -417,6 +419,153 @@ TEST_F(VectorMapTest, ALensOverEuropeShowsNamesTheMapWithoutItLeavesOut) {
   for (const std::string& name : {"Rotterdam", "Antwerpen"})
     EXPECT_NE(std::find(revealed.begin(), revealed.end(), name), revealed.end()) << name;
   EXPECT_EQ(plain.count("Amsterdam"), 1u);
+}
+
+/// The level of detail render() picks for each pixel of a width x height render of `warp`, row
+/// by row, as render.cpp's set_up computes it: log2 of the largest singular value of the Jacobian
+/// of the screen triangle that holds the pixel's centre, in level-0 texels (source_scale per
+/// source pixel) per output pixel, clamped to [0, levels - 1]; NaN outside the mesh.
+std::vector<double> pixel_lods(const WarpMesh& warp, double source_scale, int levels, int width,
+                               int height) {
+  const WarpMap map = geolens::framed_warp_map(warp, width, height);
+  const WarpMesh& mesh = map.mesh();
+  std::vector<double> triangle_lods(size_t(mesh.F.rows()), std::nan(""));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    Eigen::Matrix2d screen, source;
+    for (int k = 0; k < 2; ++k) {
+      screen.col(k) =
+          (mesh.screen.row(mesh.F(f, k + 1)) - mesh.screen.row(mesh.F(f, 0))).transpose();
+      source.col(k) =
+          (mesh.source.row(mesh.F(f, k + 1)) - mesh.source.row(mesh.F(f, 0))).transpose();
+    }
+    if (std::abs(screen.determinant()) < 1e-9) continue;
+    const Eigen::Matrix2d J = source_scale * source * screen.inverse();
+    const double sigma = 0.5 * (std::hypot(J(0, 0) + J(1, 1), J(1, 0) - J(0, 1)) +
+                                std::hypot(J(0, 0) - J(1, 1), J(1, 0) + J(0, 1)));
+    triangle_lods[size_t(f)] = sigma > 1 ? std::min(std::log2(sigma), double(levels - 1)) : 0.0;
+  }
+  std::vector<double> lods(size_t(width) * size_t(height), std::nan(""));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const Eigen::Index f = map.screen_triangle({x + 0.5, y + 0.5});
+      if (f >= 0) lods[size_t(y) * size_t(width) + size_t(x)] = triangle_lods[size_t(f)];
+    }
+  return lods;
+}
+
+/// How much more neighbouring pixels differ where render() changes level than the same pixels
+/// differ where it does not. `a` and `b` are one warp rendered from two pyramids of one map whose
+/// levels are `shift` (about 1/2) apart: b's level of detail is a's, `lods`, plus shift, so a
+/// pixel where a changes level is about mid-level in b. The pairs of horizontally or vertically
+/// neighbouring pixels in the lens's transition ring (level of detail neither `focus_lod` nor
+/// `context_lod`) whose level of detail crosses a midpoint m + 1/2 between two levels of a: their
+/// summed absolute difference in a over the same in b; and the same with a and b swapped, for the
+/// midpoints of b. `seam` is the geometric mean of the two: above 1 where a change of level shows
+/// as a step, and not biased by one map's levels showing more detail than the other's (which
+/// raises one ratio about as much as it lowers the other).
+struct SeamRatio {
+  double a_over_b = 0, b_over_a = 0, seam = 0;
+  int a_pairs = 0, b_pairs = 0;
+};
+SeamRatio seam_ratio(const Image& a, const Image& b, const std::vector<double>& lods, double shift,
+                     double focus_lod, double context_lod) {
+  auto in_ring = [&](double lod) {
+    return std::isfinite(lod) && std::abs(lod - focus_lod) > 1e-6 &&
+           std::abs(lod - context_lod) > 1e-6;
+  };
+  auto difference = [](const Image& image, int x, int y, int dx, int dy) {
+    int d = 0;
+    for (int c = 0; c < image.channels; ++c)
+      d += std::abs(image.at(x, y)[c] - image.at(x + dx, y + dy)[c]);
+    return double(d);
+  };
+  SeamRatio r;
+  double a_at_a = 0, b_at_a = 0, a_at_b = 0, b_at_b = 0;  // summed differences at a's, b's seams
+  for (int y = 0; y + 1 < a.height; ++y)
+    for (int x = 0; x + 1 < a.width; ++x)
+      for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        const double p = lods[size_t(y) * size_t(a.width) + size_t(x)];
+        const double q = lods[size_t(y + dy) * size_t(a.width) + size_t(x + dx)];
+        if (!in_ring(p) || !in_ring(q)) continue;
+        if (std::floor(p - 0.5) != std::floor(q - 0.5)) {
+          a_at_a += difference(a, x, y, dx, dy);
+          b_at_a += difference(b, x, y, dx, dy);
+          ++r.a_pairs;
+        }
+        if (std::floor(p + shift - 0.5) != std::floor(q + shift - 0.5)) {
+          a_at_b += difference(a, x, y, dx, dy);
+          b_at_b += difference(b, x, y, dx, dy);
+          ++r.b_pairs;
+        }
+      }
+  r.a_over_b = a_at_a / b_at_a;
+  r.b_over_a = b_at_b / a_at_b;
+  r.seam = std::sqrt(r.a_over_b * r.b_over_a);
+  return r;
+}
+
+TEST_F(VectorMapTest, NoSeamWhereTheLensChangesTheLevel) {
+  // The README's Europe map framed 1024 x 977 (scale 8: 8 texels a frame pixel at level 0), and
+  // the same map framed 1448 px wide, so that its levels are sqrt(2) finer, half a level from the
+  // first's. Two zoom-4 lenses over the Low Countries: the geometric focus lens (as the README
+  // shows it), and a flat-top lens whose magnification falls continuously from 4 to 1 (raised
+  // cosine), so that the level changes all across its ring.
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  SourceFileOptions options;
+  options.width = 1024;
+  options.style = examples + "europe_style.json";
+  const SourceFile file = geolens::open_source(examples + "europe.geojson", options);
+  options.width = 1448;
+  const SourceFile finer = geolens::open_source(examples + "europe.geojson", options);
+  const int width = file.frame_width, height = file.frame_height;
+  const double finer_scale = finer.scale * finer.frame_width / width;
+  const double shift = std::log2(finer_scale / file.scale);
+  ASSERT_NEAR(shift, 0.5, 0.01);
+  ASSERT_EQ(file.level_band, 0.25);
+
+  const geolens::GeometricLens geometric(width, height);
+  geolens::CircleLens flattop;
+  flattop.center = {378, 420};
+  flattop.radius = 400;  // on screen; its flat top 200
+  flattop.zoom = 4;
+  const std::pair<std::string, WarpMesh> lenses[] = {
+      {"focus lens",
+       geometric
+           .solve(geolens::parse_lens_spec("circle:378,420,70:4", 2, geolens::Profile::kGaussian, 0,
+                                           width, height))
+           .warp},
+      {"flat-top cosine lens",
+       geolens::classic_warp(geolens::ClassicLens::kFlattopCosine, {flattop}, width, height)}};
+  for (const auto& [name, warp] : lenses) {
+    const std::vector<double> lods =
+        pixel_lods(warp, file.scale, file.source->levels(), width, height);
+    const double focus_lod = lods[size_t(420) * size_t(width) + 378];
+    const double context_lod = lods[size_t(5) * size_t(width) + 5];
+    EXPECT_NEAR(focus_lod, 1, 0.1) << name;  // 8 texels a frame pixel magnified 4x: level 1
+    EXPECT_EQ(context_lod, 3) << name;
+    auto measure = [&](double band) {
+      geolens::RenderOptions render_options;
+      render_options.width = width;
+      render_options.height = height;
+      render_options.source_scale = file.scale;
+      render_options.level_band = band;
+      const Image a = geolens::render(warp, *file.source, render_options);
+      render_options.source_scale = finer_scale;
+      const Image b = geolens::render(warp, *finer.source, render_options);
+      return seam_ratio(a, b, lods, shift, focus_lod, context_lod);
+    };
+    const SeamRatio blended = measure(file.level_band);
+    // Levels switched at the midpoint, not blended: the seam the ratio must see.
+    const SeamRatio switched = measure(1e-3);
+    std::cout << name << ": blended " << blended.seam << " (" << blended.a_over_b << ", "
+              << blended.b_over_a << "; " << blended.a_pairs << " and " << blended.b_pairs
+              << " pairs), switched " << switched.seam << " (" << switched.a_over_b << ", "
+              << switched.b_over_a << ")\n";
+    EXPECT_GT(blended.a_pairs, 5000) << name;
+    EXPECT_GT(blended.b_pairs, 5000) << name;
+    EXPECT_LE(blended.seam, 1.1) << name;   // measured 0.97, 1.04
+    EXPECT_GE(switched.seam, 1.2) << name;  // measured 1.33, 1.32
+  }
 }
 
 }  // namespace
