@@ -56,7 +56,8 @@ bool crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double y, doubl
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
   return (p - (a + t * ab)).norm();
 }
 

@@ -112,19 +112,28 @@ struct Ring {
   std::vector<std::vector<Miter>> miters_;  // per lens of the group
 
   // The distance from p to the group's regions as the ring reads it: the Euclidean one, but
-  // where the nearest point is a convex corner of a polygon, the larger of the distances to its
-  // two edges' lines. So the ring has a crease along the corner's bisector instead of a cone
-  // at the corner, which the mesh's triangles there average without folding (a triangle that
-  // spans a wide angle as seen from a cone's apex folds under its linear average).
+  // in the normal cone of a convex corner of a polygon (between its edges' outward normals) no
+  // more than the larger of the distances to its two edges' lines. So the ring has a crease
+  // along the corner's bisector instead of a cone at the corner, which the mesh's triangles
+  // there average without folding (a triangle that spans a wide angle as seen from a cone's
+  // apex folds under its linear average). A minimum over every corner, not the nearest corner's
+  // value: that jumped where the nearest corner changed (3 px on a mask's outline, 200 px out),
+  // and the ring folded the mesh along the line. Each corner's value is at least the Euclidean
+  // distance on its cone's sides, so the minimum is continuous (and 1-Lipschitz).
   double distance(const FocusGroup& group, const std::vector<Lens>& lenses,
                   const Eigen::Vector2d& p) const {
+    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return a.x() * b.y() - a.y() * b.x();
+    };
     double best = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < group.lenses.size(); ++k) {
       double d = lenses[group.lenses[k]].region.distance(p);
       for (const Miter& m : miters_[k]) {
-        if ((p - m.corner).squaredNorm() > d * d * (1 + 1e-9)) continue;
-        d = std::max(m.n1.dot(p - m.corner), m.n2.dot(p - m.corner));
-        break;
+        // p - corner = a n1 + b n2 with a, b >= 0 in the cone.
+        const Eigen::Vector2d w = p - m.corner;
+        const double det = cross(m.n1, m.n2);
+        if (det == 0 || cross(w, m.n2) / det < 0 || cross(m.n1, w) / det < 0) continue;
+        d = std::min(d, std::max(m.n1.dot(w), m.n2.dot(w)));
       }
       best = std::min(best, d);
     }

@@ -6,20 +6,13 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/geometry/polygon.h"
 #include "geolens/io/geojson.h"
 #include "geolens/render/heatmap.h"
 
 namespace geolens {
 
 namespace {
-
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 // Draws one path at a time: each pixel keeps the largest coverage any of the path's segments
 // gives it, and the path is blended once.

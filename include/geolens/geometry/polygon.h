@@ -22,7 +22,7 @@ void validate_polygon(const std::vector<Eigen::Vector2d>& vertices,
 /// that is not two finite numbers. The shape is not checked: see validate_polygon.
 std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path);
 
-/// The distance from p to the segment a-b (a != b), pixels.
+/// The distance from p to the segment a-b (to a where a == b), pixels.
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b);
 

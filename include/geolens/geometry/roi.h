@@ -65,7 +65,13 @@ class Region {
   /// InvalidInput for fewer than 3 vertices, zero area, self-intersections or non-finite values.
   static Region polygon(const std::vector<Eigen::Vector2d>& vertices);
   /// Every 8-connected blob of non-zero pixels of `mask` (first channel), one region each, in
-  /// raster order of their first pixel. Throws InvalidInput for an empty mask.
+  /// raster order of their first pixel. A blob whose smoothed outline (mask_contours,
+  /// geometry/mask_contour.h: within about half a pixel of its pixel squares, corners rounded) is
+  /// one simple polygon that encloses its area within 5 % and is seen whole from its peak (no
+  /// notch facing away from it, which the focus lens cannot open) is that polygon, so a lens's mesh
+  /// follows its boundary (outline() gives it); any other (with a hole, a thin part, a deep notch)
+  /// is its pixel squares. Either is kind "mask" with no anchors. Throws InvalidInput for an empty
+  /// mask.
   static std::vector<Region> from_mask(const Image& mask);
   /// Any other kind of region; throws InvalidInput for a null shape.
   explicit Region(std::shared_ptr<const RegionShape> shape);
@@ -85,8 +91,8 @@ class Region {
   double depth(const Eigen::Vector2d& p) const;
   double thickness(const Eigen::Vector2d& p) const;
   /// Distance from p to the region, pixels: 0 inside, the Euclidean distance to the nearest
-  /// point of the region outside (exact for circles and polygons; to the nearest pixel square
-  /// of a mask, up to rounding).
+  /// point of the region outside (exact for circles, polygons and a mask blob's outline; to the
+  /// nearest pixel square of a mask blob without one, up to rounding).
   double distance(const Eigen::Vector2d& p) const;
   /// The largest distance from peak() to a point of the region, pixels: the radius of a
   /// circle, half the length of a thin strip measured from its middle.
