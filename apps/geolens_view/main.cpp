@@ -32,7 +32,7 @@ struct Args {
   std::string frame, style, view, transfer;  // how a source file is opened
   std::vector<std::string> lenses;
   int mesh = 100, frames = 2;
-  bool stats = false;
+  bool stats = false, redraw = false;
 };
 
 // "WxH" given to `option`, each side in [lo, hi].
@@ -119,6 +119,7 @@ int run(const Args& a) {
   const bool headless = script.active() || !a.screenshot.empty();
   Window window(width, height, "geolens-view", !headless);
   WarpRenderer renderer;
+  renderer.set_caching(!a.redraw);
   Input input(viewer);
   window.set_input(&input);
   PanelState panel;
@@ -131,7 +132,7 @@ int run(const Args& a) {
     double heat_max = 0;
   };
   std::array<Shown, WarpRenderer::kPanes> shown;
-  std::vector<double> frame_ms, latency_ms;
+  std::vector<double> frame_ms, latency_ms, solve_ms;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
     window.poll();
@@ -212,18 +213,20 @@ int run(const Args& a) {
     last = now;
     panel.frame_ms = panel.frame_ms == 0 ? ms : 0.9 * panel.frame_ms + 0.1 * ms;
     if (frame > 0) frame_ms.push_back(ms);
-    if (fresh && frame > 0)
+    if (fresh && frame > 0) {
       latency_ms.push_back(
           std::chrono::duration<double, std::milli>(now - viewer.frame_requested_at()).count());
+      solve_ms.push_back(viewer.frame().solve_ms);
+    }
     if (actions.quit || final) break;
   }
   if (a.stats) {
     std::printf(
         "frames %zu: frame time median %.1f ms, p95 %.1f ms; move to shown (%zu frames shown) "
-        "median %.1f ms, p95 %.1f ms; solve (last) %.1f ms; %s\n",
+        "median %.1f ms, p95 %.1f ms; solves shown median %.1f ms; solve (last) %.1f ms; %s\n",
         frame_ms.size() + 1, percentile(frame_ms, 0.5), percentile(frame_ms, 0.95),
         latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
-        viewer.frame().solve_ms, window.gl_description().c_str());
+        percentile(solve_ms, 0.5), viewer.frame().solve_ms, window.gl_description().c_str());
     if (const std::optional<StageTimings>& t = viewer.frame().stages)
       std::printf(
           "stages of the last solve (calibration solves: %d): lift %.2f ms, texture %.2f ms, "
@@ -233,6 +236,12 @@ int run(const Args& a) {
       std::printf("stages: none (%s)\n", viewer.method().c_str());
     std::printf("texture: level %d of the image, %d x %d texels\n", renderer.texture_level(),
                 renderer.texture_width(), renderer.texture_height());
+    const CacheCounts& counts = renderer.cache_counts();
+    std::printf(
+        "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures drawn "
+        "whole %d, in part %d, reused %d\n",
+        renderer.moved_triangles(0), renderer.triangles(0), counts.full, counts.partial,
+        counts.reused);
   }
   return 0;
 }
@@ -276,6 +285,9 @@ int main(int argc, char** argv) {
   app.add_option("--size", a.size, "window size WxH, pixels (default 1280x800)");
   app.add_flag("--stats", a.stats,
                "print frame time and move-to-shown latency (median, p95) at exit");
+  app.add_flag("--redraw", a.redraw,
+               "draw the picture afresh every frame instead of from its cached copy (a measure "
+               "of the drawing's cost)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -20,11 +20,13 @@ layout(location = 2) in vec3 a_heat;    // the heatmap's colour (its pass only)
 uniform vec2 u_origin;
 uniform float u_scale;
 uniform vec2 u_window;
+uniform float u_flip;  // -1: into a texture, rows top down like the window's (WarpRenderer::redraw)
 out vec2 v_source;
 out vec3 v_heat;
 void main() {
   vec2 p = u_origin + a_screen * u_scale;
-  gl_Position = vec4(2.0 * p.x / u_window.x - 1.0, 1.0 - 2.0 * p.y / u_window.y, 0.0, 1.0);
+  gl_Position =
+      vec4(2.0 * p.x / u_window.x - 1.0, u_flip * (1.0 - 2.0 * p.y / u_window.y), 0.0, 1.0);
   v_source = a_source;
   v_heat = a_heat;
 }
@@ -83,6 +85,57 @@ unsigned compile(GLenum kind, const char* text) {
   return shader;
 }
 
+// The background the window is cleared to, and a cached picture before it is drawn.
+constexpr float kBackground[4] = {0.16f, 0.16f, 0.17f, 1.0f};
+
+// A vertex at most this far from its source position (source pixels) is in place: far below
+// what a picture shows, and below a float's resolution at the largest image side.
+constexpr double kInPlace = 1e-4;
+
+using Rect = WarpRenderer::Rect;
+
+Rect intersection(const Rect& a, const Rect& b) {
+  const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const int x1 = std::min(a.x + a.width, b.x + b.width),
+            y1 = std::min(a.y + a.height, b.y + b.height);
+  return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
+Rect united(const Rect& a, const Rect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  const int x0 = std::min(a.x, b.x), y0 = std::min(a.y, b.y);
+  const int x1 = std::max(a.x + a.width, b.x + b.width),
+            y1 = std::max(a.y + a.height, b.y + b.height);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// The window pixels that `box` (the warp's screen pixels) touches, `margin` pixels more on
+// every side.
+Rect window_rect(const DrawSettings& s, const Eigen::AlignedBox2d& box, int margin) {
+  if (box.isEmpty()) return {};
+  const Eigen::Vector2d lo = s.origin + box.min() * s.scale, hi = s.origin + box.max() * s.scale;
+  // Far beyond the window is clamped before the conversion to int.
+  const auto clamp = [](double v) { return std::clamp(v, -1e6, 1e6); };
+  const int x0 = int(std::floor(clamp(lo.x()))) - margin,
+            y0 = int(std::floor(clamp(lo.y()))) - margin;
+  const int x1 = int(std::ceil(clamp(hi.x()))) + margin,
+            y1 = int(std::ceil(clamp(hi.y()))) + margin;
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// Whether a and b draw the same picture but for its outlines and the warp.
+bool same_view(const DrawSettings& a, const DrawSettings& b) {
+  return a.window_width == b.window_width && a.window_height == b.window_height &&
+         a.origin == b.origin && a.scale == b.scale && a.clip_x == b.clip_x &&
+         a.clip_width == b.clip_width && a.pane == b.pane && a.wireframe == b.wireframe &&
+         a.heatmap == b.heatmap && a.heat_opacity == b.heat_opacity;
+}
+
+bool same_outlines(const DrawSettings& a, const DrawSettings& b) {
+  return a.outlines == b.outlines && a.selected == b.selected;
+}
+
 }  // namespace
 
 WarpRenderer::WarpRenderer() {
@@ -112,6 +165,7 @@ WarpRenderer::WarpRenderer() {
   loc_circles_ = glGetUniformLocation(program_, "u_circles");
   loc_selected_ = glGetUniformLocation(program_, "u_selected");
   loc_heat_ = glGetUniformLocation(program_, "u_heat");
+  loc_flip_ = glGetUniformLocation(program_, "u_flip");
   glUseProgram(program_);
   glUniform1i(glGetUniformLocation(program_, "u_texture"), 0);
 
@@ -125,6 +179,15 @@ WarpRenderer::WarpRenderer() {
     glBindVertexArray(m.vao);
     glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    glGenVertexArrays(1, &m.quad_vao);
+    glGenBuffers(1, &m.quad_vbo);
+    glBindVertexArray(m.quad_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.quad_vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);
@@ -149,7 +212,13 @@ WarpRenderer::WarpRenderer() {
 
 WarpRenderer::~WarpRenderer() {
   glDeleteTextures(1, &texture_);
+  for (Cache& c : caches_) {
+    glDeleteFramebuffers(1, &c.framebuffer);
+    glDeleteTextures(1, &c.texture);
+  }
   for (Mesh& m : panes_) {
+    glDeleteBuffers(1, &m.quad_vbo);
+    glDeleteVertexArrays(1, &m.quad_vao);
     glDeleteBuffers(1, &m.heat_vbo);
     glDeleteVertexArrays(1, &m.heat_vao);
     glDeleteBuffers(1, &m.ebo);
@@ -220,21 +289,81 @@ void WarpRenderer::set_image(const Image& image) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glGenerateMipmap(GL_TEXTURE_2D);
+  // The quad shows the image in place under the triangles that move: only where they hide it.
+  opaque_ = true;
+  if (texels.channels == 2 || texels.channels == 4)
+    for (int y = 0; opaque_ && y < texels.height; ++y) {
+      const uint8_t* row = texels.data + size_t(y) * texels.stride;
+      for (int x = 0; x < texels.width; ++x)
+        if (row[size_t(x) * size_t(texels.channels) + size_t(texels.channels) - 1] != 255) {
+          opaque_ = false;
+          break;
+        }
+    }
+  ++image_version_;
 }
 
 void WarpRenderer::set_mesh(int pane, const WarpMesh& mesh) {
-  std::vector<float> vertices(size_t(mesh.source.rows()) * 4);
-  for (Eigen::Index v = 0; v < mesh.source.rows(); ++v) {
+  const Eigen::Index n = mesh.source.rows();
+  std::vector<float> vertices(size_t(n) * 4);
+  std::vector<char> in_place(static_cast<size_t>(n));
+  Mesh& m = panes_.at(size_t(pane));
+  Eigen::AlignedBox2d box;  // the source's
+  m.extent.setEmpty();
+  for (Eigen::Index v = 0; v < n; ++v) {
     float* p = vertices.data() + v * 4;
     p[0] = float(mesh.screen(v, 0));
     p[1] = float(mesh.screen(v, 1));
     p[2] = float(mesh.source(v, 0));
     p[3] = float(mesh.source(v, 1));
+    in_place[size_t(v)] =
+        (mesh.screen.row(v) - mesh.source.row(v)).cwiseAbs().maxCoeff() <= kInPlace;
+    box.extend(mesh.source.row(v).transpose());
+    m.extent.extend(mesh.screen.row(v).transpose());
   }
-  std::vector<unsigned> indices(size_t(mesh.F.rows()) * 3);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) indices[size_t(f) * 3 + k] = unsigned(mesh.F(f, k));
-  Mesh& m = panes_.at(size_t(pane));
+  m.extent.extend(box);
+  // The quad stands for the triangles in place if the source's triangles cover their box (their
+  // areas add up to its area: they never overlap) and its border is in place: the picture of the
+  // box is then the box (a map that keeps a disk's border covers the disk), the moving triangles
+  // over the image in place.
+  double area = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector2d a = mesh.source.row(mesh.F(f, 0)), b = mesh.source.row(mesh.F(f, 1)),
+                          c = mesh.source.row(mesh.F(f, 2));
+    area += 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  }
+  const double box_area = box.isEmpty() ? 0 : box.volume();
+  m.quad = box_area > 0 && std::abs(area - box_area) <= 1e-9 * box_area;
+  for (Eigen::Index v = 0; m.quad && v < n; ++v) {
+    const Eigen::Vector2d p = mesh.source.row(v);
+    const bool on_border = p.x() <= box.min().x() || p.y() <= box.min().y() ||
+                           p.x() >= box.max().x() || p.y() >= box.max().y();
+    if (on_border && !in_place[size_t(v)]) m.quad = false;
+  }
+  // The triangles that move first; those in place after them, drawn only in the wireframe.
+  const auto moves = [&](Eigen::Index f) {
+    return !m.quad || !in_place[size_t(mesh.F(f, 0))] || !in_place[size_t(mesh.F(f, 1))] ||
+           !in_place[size_t(mesh.F(f, 2))];
+  };
+  std::vector<unsigned> indices;
+  indices.reserve(size_t(mesh.F.rows()) * 3);
+  m.moved.setEmpty();
+  for (const bool moving : {true, false}) {
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+      if (moves(f) != moving) continue;
+      for (int k = 0; k < 3; ++k) {
+        indices.push_back(unsigned(mesh.F(f, k)));
+        if (moving) m.moved.extend(mesh.screen.row(mesh.F(f, k)).transpose());
+      }
+    }
+    if (moving) m.moved_count = int(indices.size());
+  }
+  // The quad: screen = source at the box's corners, as a strip.
+  const float x0 = float(box.min().x()), y0 = float(box.min().y()), x1 = float(box.max().x()),
+              y1 = float(box.max().y());
+  const float quad[16] = {x0, y0, x0, y0, x1, y0, x1, y0, x0, y1, x0, y1, x1, y1, x1, y1};
+  glBindBuffer(GL_ARRAY_BUFFER, m.quad_vbo);
+  glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STREAM_DRAW);
   glBindVertexArray(m.vao);
   glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(float)), vertices.data(),
@@ -242,7 +371,9 @@ void WarpRenderer::set_mesh(int pane, const WarpMesh& mesh) {
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(unsigned)),
                indices.data(), GL_STREAM_DRAW);
   glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   m.index_count = int(indices.size());
+  ++m.version;
 }
 
 void WarpRenderer::set_heat(int pane, const WarpMesh& mesh,
@@ -271,31 +402,129 @@ void WarpRenderer::set_heat(int pane, const WarpMesh& mesh,
                GL_STREAM_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   m.heat_count = int(corners.size());
+  ++m.heat_version;
 }
 
 void WarpRenderer::clear(int width, int height) const {
   glViewport(0, 0, width, height);
   glDisable(GL_SCISSOR_TEST);
-  glClearColor(0.16f, 0.16f, 0.17f, 1.0f);
+  glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
   glClear(GL_COLOR_BUFFER_BIT);
 }
 
-void WarpRenderer::draw(const DrawSettings& s) const {
+WarpRenderer::Rect WarpRenderer::area(const DrawSettings& s, const Mesh& m) const {
+  const Rect pane = s.clip_width > 0 ? Rect{s.clip_x, 0, s.clip_width, s.window_height}
+                                     : Rect{0, 0, s.window_width, s.window_height};
+  return intersection(intersection(window_rect(s, m.extent, 1), pane),
+                      {0, 0, s.window_width, s.window_height});
+}
+
+std::optional<WarpRenderer::Rect> WarpRenderer::changing(const DrawSettings& s,
+                                                         const Mesh& m) const {
+  if (!m.quad || !opaque_) return std::nullopt;
+  // The triangles cover no pixel beyond their vertices' box; a ring where the picture is in
+  // place lies within about two and a half window pixels of its circle (kFragmentShader).
+  Rect r = window_rect(s, m.moved, 1);
+  for (const Eigen::Vector3d& c : s.outlines)
+    r = united(
+        r,
+        window_rect(
+            s, Eigen::AlignedBox2d(c.head<2>().array() - c.z(), c.head<2>().array() + c.z()), 4));
+  return r;
+}
+
+bool WarpRenderer::reserve(Cache& c, int width, int height) {
+  if (c.framebuffer != 0 && width == c.width && height == c.height) return true;
+  c.width = width;
+  c.height = height;
+  c.valid = false;
+  if (c.texture == 0) glGenTextures(1, &c.texture);
+  glBindTexture(GL_TEXTURE_2D, c.texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  if (c.framebuffer == 0) glGenFramebuffers(1, &c.framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c.texture, 0);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return complete;
+}
+
+void WarpRenderer::redraw(const DrawSettings& s, const Mesh& m, Cache& c, const Rect& dirty) {
+  // The texture is the window's size, texel for pixel, its rows top down: Mesa keeps the
+  // window's that way and flips y as it draws there, so drawn flipped the picture rasterizes
+  // in the texture exactly as in the window (a viewport moved to the picture's area alone, or
+  // rows bottom up, round vertices differently: a few pixels on edges would differ).
+  glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
+  glViewport(0, 0, s.window_width, s.window_height);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(dirty.x, dirty.y, dirty.width, dirty.height);
+  glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
+  glClear(GL_COLOR_BUFFER_BIT);
+  paint(s, m, -1);
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void WarpRenderer::draw(const DrawSettings& s) {
   const Mesh& m = panes_.at(size_t(s.pane));
   if (m.index_count == 0) return;
-  glViewport(0, 0, s.window_width, s.window_height);
+  Cache& c = caches_.at(size_t(s.pane));
+  const Rect at = area(s, m);
+  if (!caching_ || at.empty() || !reserve(c, s.window_width, s.window_height)) {
+    glViewport(0, 0, s.window_width, s.window_height);
+    if (s.clip_width > 0) {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(s.clip_x, 0, s.clip_width, s.window_height);
+    }
+    paint(s, m, 1);
+    glDisable(GL_SCISSOR_TEST);
+    return;
+  }
+  const std::optional<Rect> next = changing(s, m);
+  const bool same_warp = m.version == c.mesh_version && same_outlines(s, c.settings);
+  if (!c.valid || !(at == c.area) || !same_view(s, c.settings) ||
+      c.image_version != image_version_ || (s.heatmap && c.heat_version != m.heat_version) ||
+      (!same_warp && (s.heatmap || s.wireframe || !next || !c.changing))) {
+    c.area = at;
+    redraw(s, m, c, at);
+    ++counts_.full;
+  } else if (!same_warp) {
+    // The old and the new warp and outlines differ only where either moves or outlines.
+    const Rect dirty = intersection(united(*c.changing, *next), at);
+    if (!dirty.empty()) redraw(s, m, c, dirty);
+    ++counts_.partial;
+  } else {
+    ++counts_.reused;
+  }
+  c.valid = true;
+  c.settings = s;
+  c.mesh_version = m.version;
+  c.heat_version = m.heat_version;
+  c.image_version = image_version_;
+  c.changing = next;
+  // Copied into the window, pixel for pixel (the scissor would clip it: off).
+  const int bottom = s.window_height - at.y - at.height;
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, c.framebuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(at.x, at.y, at.x + at.width, at.y + at.height, at.x, bottom + at.height,
+                    at.x + at.width, bottom, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void WarpRenderer::paint(const DrawSettings& s, const Mesh& m, float flip) const {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  if (s.clip_width > 0) {
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(s.clip_x, 0, s.clip_width, s.window_height);
-  }
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_);
   glUniform2f(loc_origin_, float(s.origin.x()), float(s.origin.y()));
   glUniform1f(loc_scale_, float(s.scale));
   glUniform2f(loc_window_, float(s.window_width), float(s.window_height));
+  glUniform1f(loc_flip_, flip);
   // The texture's extent in source pixels: its level's texels are 2^level source pixels each
   // (a level's sides round up, so it may reach past the image).
   glUniform2f(loc_size_, float(texture_width_ << texture_level_),
@@ -316,8 +545,13 @@ void WarpRenderer::draw(const DrawSettings& s) const {
     glDrawArrays(GL_TRIANGLES, 0, m.heat_count);
   } else {
     glUniform1f(loc_heat_, 0.0f);
+    if (m.quad && opaque_) {
+      glBindVertexArray(m.quad_vao);
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
     glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, m.quad && opaque_ ? m.moved_count : m.index_count, GL_UNSIGNED_INT,
+                   nullptr);
   }
   if (s.wireframe) {
     glBindVertexArray(m.vao);
@@ -329,7 +563,6 @@ void WarpRenderer::draw(const DrawSettings& s) const {
   }
   glBindVertexArray(0);
   glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace geolens::view

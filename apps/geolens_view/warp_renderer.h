@@ -6,11 +6,21 @@
 // overlay draws each triangle in a colour given per triangle (three vertices of its own, so the
 // colour does not blend across edges) over the grey of the picture. Two meshes can be held, one
 // per pane of a split view, drawn with the same texture.
+//
+// What costs under a software OpenGL (Mesa's llvmpipe sets up every triangle on the CPU) is kept
+// off most frames two ways. The part of a warp that leaves the image in place (the identity,
+// which a focus lens's finite footprint leaves beyond it) is drawn as one textured quad and only
+// the triangles that move over it. And each pane's picture is drawn into a texture of its own
+// (an offscreen framebuffer the window's size), drawn again only where something changed, and
+// its area copied to the window every frame: a frame with nothing new costs one copy, and a new
+// warp of the same view redraws only the box of what its lenses moved.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "geolens/io/image.h"
@@ -37,6 +47,13 @@ struct DrawSettings {
   int selected = -1;  ///< the outline drawn in the selection colour, -1: none
 };
 
+/// What draw() did with the panes' cached pictures since the renderer was made.
+struct CacheCounts {
+  int full = 0;     ///< pictures drawn whole: the first, a new view, overlay or image
+  int partial = 0;  ///< redrawn where a new warp or outline differs from the last
+  int reused = 0;   ///< copied to the window as they were
+};
+
 class WarpRenderer {
  public:
   static constexpr int kMaxOutlines = 32;
@@ -61,27 +78,87 @@ class WarpRenderer {
   int texture_level() const { return texture_level_; }
   int texture_width() const { return texture_width_; }
   int texture_height() const { return texture_height_; }
-  /// Uploads the triangles of `mesh` (source pixels of the image set last) for `pane`.
+  /// Uploads the triangles of `mesh` (source pixels of the image set last) for `pane`. When the
+  /// mesh's source covers its bounding box and the vertices on that box's border are in place
+  /// (screen == source, the viewer's framing), the triangles whose three vertices are in place
+  /// are drawn as one quad over that box and the others over it, unless the image has texels
+  /// that are not opaque (the quad would show through them); otherwise every triangle is.
   void set_mesh(int pane, const WarpMesh& mesh);
+  /// The pane's triangles, and those of them drawn as triangles (the rest are the quad's).
+  int triangles(int pane) const { return panes_.at(size_t(pane)).index_count / 3; }
+  int moved_triangles(int pane) const {
+    const Mesh& m = panes_.at(size_t(pane));
+    return (m.quad && opaque_ ? m.moved_count : m.index_count) / 3;
+  }
   /// Uploads the heatmap of `mesh` for `pane`: `colours` one per triangle (#F), RGB.
   void set_heat(int pane, const WarpMesh& mesh, const std::vector<std::array<uint8_t, 3>>& colours);
   /// Clears the window (width x height framebuffer pixels) to the background.
   void clear(int width, int height) const;
-  /// Draws the mesh of settings.pane into its columns of the window.
-  void draw(const DrawSettings& settings) const;
+  /// Draws the mesh of settings.pane into its columns of the window: from the pane's cached
+  /// picture, redrawn first where it is out of date (with caching off, afresh).
+  void draw(const DrawSettings& settings);
+  /// Caching on (the default) or off: every frame drawn afresh, as a measure of the cost.
+  void set_caching(bool on) { caching_ = on; }
+  const CacheCounts& cache_counts() const { return counts_; }
+
+  /// Window pixels, origin top-left, y down: [x, x + width) x [y, y + height).
+  struct Rect {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool empty() const { return width <= 0 || height <= 0; }
+    bool operator==(const Rect& o) const {
+      return x == o.x && y == o.y && width == o.width && height == o.height;
+    }
+  };
 
  private:
-  // One pane's triangles: indexed for the picture, three vertices each for the heatmap.
+  // One pane's triangles: indexed for the picture (those that move first, moved_count indices,
+  // when the quad draws the rest), three vertices each for the heatmap; the quad over the
+  // mesh's source box, and boxes of screen positions (the warp's screen pixels) to draw into.
   struct Mesh {
-    unsigned vao = 0, vbo = 0, ebo = 0, heat_vao = 0, heat_vbo = 0;
-    int index_count = 0, heat_count = 0;
+    unsigned vao = 0, vbo = 0, ebo = 0, heat_vao = 0, heat_vbo = 0, quad_vao = 0, quad_vbo = 0;
+    int index_count = 0, moved_count = 0, heat_count = 0;
+    bool quad = false;
+    Eigen::AlignedBox2d extent;  // every vertex's screen position and the source box
+    Eigen::AlignedBox2d moved;   // the screen positions of the triangles that move
+    std::uint64_t version = 0, heat_version = 0;
   };
+  // One pane's picture as last drawn into its texture (the window's size; the picture covers
+  // `area` of it), and what it was drawn from.
+  struct Cache {
+    unsigned framebuffer = 0, texture = 0;
+    int width = 0, height = 0;
+    bool valid = false;
+    Rect area;
+    DrawSettings settings;
+    std::uint64_t mesh_version = 0, heat_version = 0, image_version = 0;
+    std::optional<Rect> changing;  // what a new warp or outline may change; none: all of it
+  };
+
+  // Draws the picture of `m` with `s`'s uniforms into the framebuffer and viewport bound, y
+  // flipped when `flip` is -1.
+  void paint(const DrawSettings& s, const Mesh& m, float flip) const;
+  // Where the picture of `m` lies in the window, within the pane's columns.
+  Rect area(const DrawSettings& s, const Mesh& m) const;
+  // The window pixels a new warp or outline may change: where the mesh's triangles move and
+  // around the circles outlined where the picture is in place; none when the quad is not used.
+  std::optional<Rect> changing(const DrawSettings& s, const Mesh& m) const;
+  // Makes c's texture width x height texels (made anew, its picture dropped, if it was another
+  // size); false if the framebuffer cannot be made.
+  bool reserve(Cache& c, int width, int height);
+  // Draws the picture into c's texture within `dirty` (window pixels).
+  void redraw(const DrawSettings& s, const Mesh& m, Cache& c, const Rect& dirty);
 
   unsigned program_ = 0, texture_ = 0;
   std::array<Mesh, kPanes> panes_;
+  std::array<Cache, kPanes> caches_;
+  bool caching_ = true;
+  bool opaque_ = true;  // every texel's alpha is 1
+  CacheCounts counts_;
+  std::uint64_t image_version_ = 0;
   int texture_level_ = 0, texture_width_ = 1, texture_height_ = 1;
   int loc_origin_ = -1, loc_scale_ = -1, loc_window_ = -1, loc_size_ = -1, loc_flat_ = -1,
-      loc_colour_ = -1, loc_count_ = -1, loc_circles_ = -1, loc_selected_ = -1, loc_heat_ = -1;
+      loc_colour_ = -1, loc_count_ = -1, loc_circles_ = -1, loc_selected_ = -1, loc_heat_ = -1,
+      loc_flip_ = -1;
 };
 
 }  // namespace geolens::view

@@ -125,6 +125,24 @@ double mean_difference(const Image& a, const Image& b, int x0 = 0, int y0 = 0, i
   return sum / n;
 }
 
+// The "picture:" line of --stats: the triangles of the left pane's warp drawn as triangles (the
+// others by the quad of the image in place) and all of them; the pictures drawn whole, in part
+// and reused from the cache. -1 where the line is missing.
+struct PictureStats {
+  int moved = -1, triangles = -1, whole = -1, part = -1, reused = -1;
+};
+
+PictureStats picture_stats(const std::string& out) {
+  PictureStats p;
+  const size_t at = out.find("picture: ");
+  if (at != std::string::npos)
+    std::sscanf(out.c_str() + at,
+                "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures "
+                "drawn whole %d, in part %d, reused %d",
+                &p.moved, &p.triangles, &p.whole, &p.part, &p.reused);
+  return p;
+}
+
 TEST(ViewSetup, XvfbRunIsInstalled) {
   // scripts/setup.sh installs it; without it every test here would fail for that reason alone.
   ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0)
@@ -300,6 +318,79 @@ TEST_F(View, TheHeatmapColoursShapeDistortionWithTheColoursOfCompare) {
   // Off again: the picture.
   const Image off = shot("off.png", lens, "key heatmap\nkey heatmap\n");
   EXPECT_LT(mean_difference(off, shot("plain.png", lens)), 0.5);
+}
+
+// A frame with nothing new copies the cached picture; a new warp or outline redraws it where
+// they change, a new view or overlay all of it. Each picture is the one drawn afresh (--redraw),
+// but for a few pixels where Mesa rasterizes a texture by other rules than the window (a
+// wireframe's lines move by a pixel in places).
+TEST_F(View, TheCachedPictureIsTheOneDrawnAfresh) {
+  const std::string shots[] = {"moved", "selected", "zoomed", "heat", "wire", "split", "panel"};
+  auto script = [&](const std::string& mode) {
+    const std::string name = path(mode + ".txt");
+    std::ofstream(name) << "add circle:250,60,16:2\nwait\nframe 1 move 1 200 150\nwait\n"
+                        << "frame 2 screenshot " << path(mode + "-moved.png") << "\n"
+                        << "frame 3 select 2\nframe 4 screenshot " << path(mode + "-selected.png")
+                        << "\nframe 5 move 2 240 80\nwait\nframe 6 mouse 40 200\nscroll 1\n"
+                        << "frame 7 screenshot " << path(mode + "-zoomed.png") << "\n"
+                        << "frame 8 set heatmap on\nscreenshot " << path(mode + "-heat.png") << "\n"
+                        << "frame 9 set heatmap off\nset wireframe on\nscreenshot "
+                        << path(mode + "-wire.png") << "\n"
+                        << "frame 10 set wireframe off\nmove 1 150 110\nset split fisheye\nwait\n"
+                        << "frame 11 screenshot " << path(mode + "-split.png") << "\n"
+                        << "frame 12 move 1 170 120\nwait\nscreenshot " << path(mode + "-panel.png")
+                        << " panel\nframe 20 quit\n";
+    return name;
+  };
+  const std::string common =
+      path("in.png") + " --size 320x240 --lens circle:100,120,24:2.5 --stats ";
+  const ViewRun cached = run(common + "--script " + script("cached"));
+  ASSERT_EQ(cached.code, 0) << cached.err;
+  const ViewRun fresh = run(common + "--redraw --script " + script("fresh"));
+  ASSERT_EQ(fresh.code, 0) << fresh.err;
+  for (const std::string& shot : shots) {
+    SCOPED_TRACE(shot);
+    const Image a = load_image(path("cached-" + shot + ".png"));
+    const Image b = load_image(path("fresh-" + shot + ".png"));
+    EXPECT_LT(mean_difference(a, b), shot == "wire" ? 0.5 : 0.02);
+    if (shot == "moved") EXPECT_GT(mean_difference(a, source_), 5.0);  // a lens is there
+  }
+  // The moves and the selection redrew in part; the frames between them were copies.
+  const PictureStats c = picture_stats(cached.out), f = picture_stats(fresh.out);
+  EXPECT_GE(c.part, 2) << cached.out;
+  EXPECT_GE(c.reused, 5) << cached.out;
+  EXPECT_EQ(f.whole + f.part + f.reused, 0) << fresh.out;
+}
+
+// A still view is drawn once: every later frame is the cached picture.
+TEST_F(View, AStillViewIsDrawnOnce) {
+  std::ofstream(path("still.txt")) << "wait\nframe 20 quit\n";
+  const ViewRun r = run(path("in.png") + " --size 320x240 --lens circle:100,120,24:2.5 --stats " +
+                        "--script " + path("still.txt"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const PictureStats p = picture_stats(r.out);
+  EXPECT_EQ(p.whole, 1) << r.out;
+  EXPECT_EQ(p.part, 0) << r.out;
+  EXPECT_GE(p.reused, 19) << r.out;
+}
+
+// The image in place is one quad: a focus lens's triangles beyond its footprint are not drawn as
+// triangles, a zoom-1 lens's none; a global lift moves every vertex, so every triangle is drawn.
+TEST_F(View, OnlyTheTrianglesThatMoveAreDrawnAsTriangles) {
+  auto stats = [&](const std::string& arguments) {
+    const ViewRun r = run(path("in.png") + " --size 320x240 --stats --frames 1 --screenshot " +
+                          path("s.png") + " " + arguments);
+    EXPECT_EQ(r.code, 0) << r.err;
+    const PictureStats p = picture_stats(r.out);
+    EXPECT_GT(p.triangles, 0) << r.out;
+    return p;
+  };
+  EXPECT_EQ(stats("--lens circle:160,120,24:1").moved, 0);
+  const PictureStats focus = stats("--lens circle:60,60,10:2");
+  EXPECT_GT(focus.moved, 0);
+  EXPECT_LT(focus.moved, focus.triangles);
+  const PictureStats lift = stats("--lens circle:160,120,24:2.5 --model lift");
+  EXPECT_EQ(lift.moved, lift.triangles);
 }
 
 TEST_F(View, TheSplitViewShowsBothMethodsOnTheSameLenses) {
