@@ -1,5 +1,7 @@
 #include "lens_solver.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "geolens/core/errors.h"
@@ -46,6 +48,7 @@ std::uint64_t LensSolver::submit(const std::vector<Lens>& lenses, bool drop_stal
   if (drop_stale || lenses.empty()) {
     worker_->cancel();
     pending_.clear();
+    shown_worker_request_ = 0;
   }
   if (lenses.empty()) {
     // No method takes an empty list: the identity, at once. The worker's answers to earlier
@@ -69,11 +72,8 @@ SolvedFrame LensSolver::latest() const {
   const double ms = f.solve_ms;
   std::string error = std::move(f.error);
   std::lock_guard<std::mutex> lock(mutex_);
-  // An answer to a request still pending (not dropped, not older than one already shown).
-  if (const auto it = pending_.find(request); it != pending_.end()) {
-    shown_.request = it->second.request;
+  const auto show = [&] {
     shown_.result = std::move(result);
-    shown_.lenses = it->second.lenses;
     shown_.solve_ms = ms;
     shown_.stages.reset();
     shown_.solves = 0;
@@ -83,12 +83,104 @@ SolvedFrame LensSolver::latest() const {
       shown_.stages = solved.timings;
       shown_.solves = solved.solves;
     }
+  };
+  // An answer to a request still pending (not dropped, not older than one already shown); or the
+  // full frame of the request shown last as a draft (the worker refines it under its number).
+  if (const auto it = pending_.find(request); it != pending_.end()) {
+    shown_.request = it->second.request;
+    shown_.lenses = it->second.lenses;
+    show();
+    shown_worker_request_ = request;
     pending_.erase(pending_.begin(), std::next(it));
+  } else if (request != 0 && request == shown_worker_request_ && result &&
+             result != shown_.result) {
+    show();
   }
   shown_.error = std::move(error);
   return shown_;
 }
 
 void LensSolver::wait_idle() { worker_->wait_idle(); }
+
+DetailWorker::DetailWorker(std::shared_ptr<const SourceFile> file) : file_(std::move(file)) {
+  thread_ = std::thread([this] { run(); });
+}
+
+DetailWorker::~DetailWorker() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void DetailWorker::submit(std::shared_ptr<const Magnification> warp, const DetailView& view) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  waiting_ = std::move(warp);
+  waiting_view_ = view;
+  wake_.notify_all();
+}
+
+std::shared_ptr<const DetailPicture> DetailWorker::latest() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_;
+}
+
+std::string DetailWorker::error() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return error_;
+}
+
+void DetailWorker::wait_idle() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  idle_.wait(lock, [this] { return !busy_ && !waiting_; });
+}
+
+void DetailWorker::run() {
+  for (;;) {
+    std::shared_ptr<const Magnification> warp;
+    DetailView view;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || waiting_; });
+      if (stop_) return;
+      warp = std::move(waiting_);
+      waiting_.reset();
+      view = waiting_view_;
+      busy_ = true;
+    }
+    // The warp's screen in the picture's texels: window pixel origin + s * scale, from the
+    // covered area's corner, kMaxSide texels a side at most.
+    const double fit =
+        std::min(1.0, double(DetailPicture::kMaxSide) / double(std::max(view.width, view.height)));
+    RenderOptions options;
+    options.width = std::max(1, int(std::lround(view.width * fit)));
+    options.height = std::max(1, int(std::lround(view.height * fit)));
+    WarpMesh framed = warp->warp;
+    const Eigen::RowVector2d corner(view.origin.x() - view.x, view.origin.y() - view.y);
+    framed.screen = ((framed.screen * view.scale).rowwise() + corner) * fit;
+    framed.screen_width = options.width;
+    framed.screen_height = options.height;
+    auto picture = std::make_shared<DetailPicture>();
+    picture->view = view;
+    std::string error;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      picture->image = render(framed, *file_, options);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    picture->render_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (error.empty()) latest_ = std::move(picture);
+      error_ = std::move(error);
+      busy_ = false;
+    }
+    idle_.notify_all();
+  }
+}
 
 }  // namespace geolens::view

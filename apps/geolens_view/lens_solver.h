@@ -1,19 +1,26 @@
 #pragma once
-// The viewer's solves, off the UI thread, through the library's LensWorker: the geometric lens
-// (a LensSession) or a classic lens (ClassicMethod, method_job). The UI thread submits the lenses
-// of a frame and draws the latest finished answer meanwhile.
+// The viewer's work off the UI thread: its solves, through the library's LensWorker (the
+// geometric lens, a LensSession, or a classic lens, ClassicMethod, method_job), and the pictures
+// of a source finer than its frame rendered at the resolution they are shown (DetailWorker). The
+// UI thread submits requests and draws the latest finished answer meanwhile.
 
+#include <Eigen/Core>
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_worker.h"
+#include "geolens/source/source_file.h"
 
 namespace geolens::view {
 
@@ -68,7 +75,66 @@ class LensSolver {
   mutable std::mutex mutex_;
   mutable std::map<std::uint64_t, Pending> pending_;
   mutable SolvedFrame shown_;
+  mutable std::uint64_t shown_worker_request_ = 0;  // the worker's request shown_ answers
   std::uint64_t submitted_ = 0;
+};
+
+/// Where a solved warp is shown in the window: the warp's screen point s (frame pixels) at window
+/// pixel origin + s * scale, and the window pixels its picture covers.
+struct DetailView {
+  std::uint64_t frame = 0;  ///< the viewer's frame generation of the warp
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  double scale = 1;  ///< window pixels per frame pixel
+  int x = 0, y = 0;  ///< the covered window pixels: [x, x + width) x [y, y + height)
+  int width = 0, height = 0;
+  bool operator==(const DetailView& o) const {
+    return frame == o.frame && origin == o.origin && scale == o.scale && x == o.x && y == o.y &&
+           width == o.width && height == o.height;
+  }
+};
+
+/// A warp rendered from a source file for a DetailView: `image` covers the view's window pixels
+/// (x, y, width, height), at most kMaxSide texels a side (so a texel per window pixel unless the
+/// view is larger).
+struct DetailPicture {
+  static constexpr int kMaxSide = 4096;
+  DetailView view;
+  Image image;
+  double render_ms = 0;  ///< wall-clock time of the render, milliseconds
+};
+
+/// Renders warps from `file` (render(warp, file, options), source_file.h: its finer levels and
+/// its overlay, such as a map's labels) on a thread of its own. Only the newest request waits (one
+/// submitted while another waits replaces it); a render under way cannot stop midway, and its
+/// picture is kept all the same: the caller shows a picture only for the view it asked it for.
+class DetailWorker {
+ public:
+  explicit DetailWorker(std::shared_ptr<const SourceFile> file);
+  /// Finishes the render under way and joins the thread.
+  ~DetailWorker();
+  DetailWorker(const DetailWorker&) = delete;
+  DetailWorker& operator=(const DetailWorker&) = delete;
+
+  /// Asks for `warp` (source and screen in frame pixels) shown as `view` says.
+  void submit(std::shared_ptr<const Magnification> warp, const DetailView& view);
+  /// The latest finished picture (null before the first), and why the latest render failed
+  /// (empty if it did not).
+  std::shared_ptr<const DetailPicture> latest() const;
+  std::string error() const;
+  void wait_idle();  ///< blocks until no request is waiting or being rendered
+
+ private:
+  void run();
+
+  std::shared_ptr<const SourceFile> file_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::shared_ptr<const Magnification> waiting_;  // null: none waits
+  DetailView waiting_view_;
+  bool busy_ = false, stop_ = false;
+  std::shared_ptr<const DetailPicture> latest_;
+  std::string error_;
+  std::thread thread_;  // started by the constructor, once every member above exists
 };
 
 }  // namespace geolens::view

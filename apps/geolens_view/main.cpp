@@ -125,10 +125,10 @@ int run(const Args& a) {
   PanelState panel;
   std::optional<std::string> panel_shot;  // asked in the panel: taken at the next frame
   std::uint64_t shown_image = 0;
-  // What the GPU holds per pane: the frame's generation, and the frame and scale of its heatmap
-  // (0: none).
+  // What the GPU holds per pane: the frame's generation, the frame and scale of its heatmap (0:
+  // none), and the viewer's detail picture (its generation; pane 0 only).
   struct Shown {
-    std::uint64_t frame = 0, heat_frame = 0;
+    std::uint64_t frame = 0, heat_frame = 0, detail = 0;
     double heat_max = 0;
   };
   std::array<Shown, WarpRenderer::kPanes> shown;
@@ -170,7 +170,15 @@ int run(const Args& a) {
         on_gpu.heat_frame = on_gpu.frame;
         on_gpu.heat_max = viewer.heat_max();
       }
+      // The frame's detail, where the source has some and it is rendered for this view.
+      const DetailPicture* detail = pane == 0 ? viewer.detail_picture() : nullptr;
+      if (detail && on_gpu.detail != viewer.detail_generation()) {
+        renderer.set_detail(detail->image, {detail->view.x, detail->view.y, detail->view.width,
+                                            detail->view.height});
+        on_gpu.detail = viewer.detail_generation();
+      }
       DrawSettings settings;
+      settings.detail = detail != nullptr;
       settings.window_width = window.framebuffer_width();
       settings.window_height = window.framebuffer_height();
       settings.pane = pane;
@@ -236,6 +244,12 @@ int run(const Args& a) {
       std::printf("stages: none (%s)\n", viewer.method().c_str());
     std::printf("texture: level %d of the image, %d x %d texels\n", renderer.texture_level(),
                 renderer.texture_width(), renderer.texture_height());
+    if (const DetailPicture* d = viewer.detail_picture())
+      std::printf("detail: shown, %d x %d texels for %d x %d window pixels, rendered in %.1f ms\n",
+                  d->image.width, d->image.height, d->view.width, d->view.height, d->render_ms);
+    else
+      std::printf("detail: none shown (%s)\n",
+                  viewer.has_detail() ? "not ready or off" : "the source has none");
     const CacheCounts& counts = renderer.cache_counts();
     std::printf(
         "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures drawn "

@@ -86,6 +86,10 @@ void method_controls(Viewer& viewer) {
   ImGui::Checkbox("heatmap (H)", &viewer.heatmap);
   ImGui::SameLine();
   ImGui::Checkbox("outlines", &viewer.outlines);
+  if (viewer.has_detail()) {
+    ImGui::SameLine();
+    ImGui::Checkbox("detail", &viewer.detail);
+  }
   if (viewer.heatmap) heat_legend(viewer);
 }
 

@@ -98,7 +98,8 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
                            (name == "split" ? ", or off)" : ")"));
     } else if (name == "model") {
       parse_lens_model(a[1]);
-    } else if (name == "wireframe" || name == "heatmap" || name == "outlines" || name == "panel") {
+    } else if (name == "wireframe" || name == "heatmap" || name == "outlines" || name == "panel" ||
+               name == "detail") {
       on_off(a[1]);
     } else if (name == "heat_max") {
       if (parse_number(a[1], "set heat_max") < 0)
@@ -106,7 +107,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
     } else {
       throw InvalidInput("set: unknown option '" + name +
                          "' (mesh, method, split, model, wireframe, heatmap, heat_max, outlines, "
-                         "panel)");
+                         "panel, detail)");
     }
   } else if (c == "mouse") {
     count(2, 2, "X Y (window pixels)");
@@ -263,6 +264,7 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
     if (name == "heat_max") viewer.set_heat_max(num(1));
     if (name == "outlines") viewer.outlines = a[1] == "on";
     if (name == "panel") viewer.panel = a[1] == "on";
+    if (name == "detail") viewer.detail = a[1] == "on";
   } else if (c == "mouse") {
     viewer.mouse_move({num(0), num(1)});
   } else if (c == "press" || c == "release") {

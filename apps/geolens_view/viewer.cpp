@@ -69,6 +69,11 @@ void Viewer::open(Image image, const std::string& path) {
   image_ = std::move(image);
   image_path_ = path;
   ++image_generation_;
+  // A source with detail is set again by show_source.
+  detail_worker_.reset();
+  file_.reset();
+  detail_asked_.reset();
+  detail_.reset();
   // Keep the lenses that still fit.
   std::vector<Lens> kept;
   std::vector<std::string> specs;
@@ -129,6 +134,10 @@ void Viewer::show_source(const std::string& path, const SourceFile& file) {
   options.width = file.frame_width;
   options.height = file.frame_height;
   open(render(identity_warp(file.frame_width, file.frame_height), file, options), path);
+  if (file.scale > 1) {
+    file_ = std::make_shared<const SourceFile>(file);
+    detail_worker_ = std::make_unique<DetailWorker>(file_);
+  }
 }
 
 std::string Viewer::try_open(const std::string& path) {
@@ -540,14 +549,15 @@ bool Viewer::update() {
   if (!solver_) return false;
   const auto now = std::chrono::steady_clock::now();
   if (dirty_) {
-    requested_at_.emplace_back(solver_->submit(lenses_, drop_stale_), now);
+    submitted_request_ = solver_->submit(lenses_, drop_stale_);
+    requested_at_.emplace_back(submitted_request_, now);
     if (split_.solver) split_.solver->submit(lenses_, drop_stale_);
     dirty_ = drop_stale_ = false;
   }
   if (split_.solver) {
     SolvedFrame f = split_.solver->latest();
     if (!f.error.empty()) message = f.error;
-    if (f.request != 0 && f.request != split_.frame.request) {
+    if (f.request != 0 && (f.request != split_.frame.request || f.result != split_.frame.result)) {
       split_.frame = std::move(f);
       ++split_.generation;
       split_.measures = measure_frame(split_.frame);
@@ -555,17 +565,65 @@ bool Viewer::update() {
   }
   SolvedFrame f = solver_->latest();
   if (!f.error.empty()) message = f.error;
-  if (f.request == 0 || f.request == accepted_request_) return false;
-  if (f.error.empty()) message.clear();  // a solve succeeded: what failed before is past
-  accepted_request_ = f.request;
-  frame_ = std::move(f);
-  ++frame_generation_;
-  frame_requested_at_ = now;
-  for (const auto& [request, at] : requested_at_)
-    if (request == frame_.request) frame_requested_at_ = at;
-  std::erase_if(requested_at_, [&](const auto& r) { return r.first <= frame_.request; });
-  measures_ = measure_frame(frame_);
-  return true;
+  // A new request answered, or the full frame of the one shown as a draft.
+  const bool fresh =
+      f.request != 0 && (f.request != accepted_request_ || f.result != frame_.result);
+  if (fresh) {
+    if (f.error.empty()) message.clear();  // a solve succeeded: what failed before is past
+    if (f.request != accepted_request_) {
+      frame_requested_at_ = now;
+      for (const auto& [request, at] : requested_at_)
+        if (request == f.request) frame_requested_at_ = at;
+      std::erase_if(requested_at_, [&](const auto& r) { return r.first <= f.request; });
+    }
+    accepted_request_ = f.request;
+    frame_ = std::move(f);
+    ++frame_generation_;
+    measures_ = measure_frame(frame_);
+  }
+  update_detail();
+  return fresh;
+}
+
+std::optional<DetailView> Viewer::detail_view() const {
+  if (!detail || !detail_worker_ || !frame_.result || frame_.result->draft || dirty_ ||
+      frame_.request != submitted_request_)
+    return std::nullopt;
+  // The window pixels of pane 0 whose centres are in the frame.
+  const double s = scale();
+  const Eigen::Vector2d lo = origin(), hi = lo + Eigen::Vector2d(image_.width, image_.height) * s;
+  const auto pixel = [](double v) { return int(std::ceil(std::clamp(v - 0.5, -1e6, 1e6))); };
+  DetailView view;
+  view.frame = frame_generation_;
+  view.origin = lo;
+  view.scale = s;
+  view.x = std::max(pixel(lo.x()), 0);
+  view.y = std::max(pixel(lo.y()), 0);
+  view.width = std::min(pixel(hi.x()), pane_width()) - view.x;
+  view.height = std::min(pixel(hi.y()), window_height_) - view.y;
+  if (view.width <= 0 || view.height <= 0) return std::nullopt;
+  return view;
+}
+
+void Viewer::update_detail() {
+  if (!detail_worker_) return;
+  // Not while the view is panned: each step of a pan would ask for a picture.
+  const std::optional<DetailView> view = detail_view();
+  if (view && view != detail_asked_ && !panning_) {
+    detail_worker_->submit(frame_.result, *view);
+    detail_asked_ = view;
+  }
+  if (std::shared_ptr<const DetailPicture> latest = detail_worker_->latest(); latest != detail_) {
+    detail_ = std::move(latest);
+    ++detail_generation_;
+  }
+  if (const std::string error = detail_worker_->error(); !error.empty()) message = error;
+}
+
+const DetailPicture* Viewer::detail_picture() const {
+  if (!detail_) return nullptr;
+  const std::optional<DetailView> view = detail_view();
+  return view && *view == detail_->view ? detail_.get() : nullptr;
 }
 
 void Viewer::wait_idle() {
@@ -573,7 +631,11 @@ void Viewer::wait_idle() {
   update();  // submits what changed
   solver_->wait_idle();
   if (split_.solver) split_.solver->wait_idle();
-  update();
+  update();  // asks for the detail of the answer
+  if (detail_worker_) {
+    detail_worker_->wait_idle();
+    update();
+  }
 }
 
 FrameMeasures measure_frame(const SolvedFrame& frame) {

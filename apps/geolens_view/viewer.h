@@ -84,6 +84,22 @@ class Viewer {
   const std::string& image_path() const { return image_path_; }
   std::uint64_t image_generation() const { return image_generation_; }
 
+  // --- detail: a source finer than its frame (SourceFile::scale > 1: a vector map, an SVG) ---
+  /// Whether the source shown has such detail (a plain image has none).
+  bool has_detail() const { return bool(detail_worker_); }
+  /// Shown while on (the default) and the source has detail: once the frame's warp is the full
+  /// answer to the latest request (the lenses at rest: not a draft, nothing newer asked), it is
+  /// rendered from the source on a worker thread at the resolution the window shows pane 0
+  /// (render(warp, file, options), source_file.h: the finer levels and the overlay, as `geolens
+  /// magnify` draws them), and that picture replaces the frame's pixels until the frame or the
+  /// view changes. The right half of a split view shows the frame's pixels.
+  bool detail = true;
+  /// That picture, if one for the frame and the view shown is ready; else null (the frame's
+  /// pixels are shown).
+  const DetailPicture* detail_picture() const;
+  /// Changes with every new picture taken from the worker.
+  std::uint64_t detail_generation() const { return detail_generation_; }
+
   // --- lenses (numbered from 0 here; the script and panel number them from 1) ---
   const std::vector<Lens>& lenses() const { return lenses_; }
   /// Adds the lenses of a --lens spec (lens_spec.h); throws InvalidInput for a bad one.
@@ -166,10 +182,13 @@ class Viewer {
   std::optional<Eigen::Vector2d> source_at(const Eigen::Vector2d& at);
 
   // --- per frame ---
-  /// Submits the lenses if they changed, then takes the solver's latest answer. Returns true if
-  /// the frame to draw changed.
+  /// Submits the lenses if they changed, then takes the solver's latest answer, then asks for the
+  /// detail of the frame and view if they are at rest (`detail`). Returns true if the frame to
+  /// draw changed.
   bool update();
-  void wait_idle();  ///< blocks until the solver has answered every request
+  /// Blocks until the solver has answered every request, and the detail render of its answer
+  /// (if any) is done.
+  void wait_idle();
   const SolvedFrame& frame() const { return frame_; }
   std::uint64_t frame_generation() const { return frame_generation_; }
   const FrameMeasures& measures() const { return measures_; }
@@ -194,6 +213,10 @@ class Viewer {
   void replace_region(size_t index, const std::optional<Region>& region, const char* what,
                       const char* done);
   void restart_solver();
+  // The view of pane 0 a detail picture is wanted for now, if any (detail).
+  std::optional<DetailView> detail_view() const;
+  // Asks for the detail of the frame and view at rest, and takes the worker's latest picture.
+  void update_detail();
   // The pane (0 left, 1 right while split) at window point `at`, and `at` in the left pane's
   // window coordinates.
   std::pair<int, Eigen::Vector2d> pane_at(const Eigen::Vector2d& at) const;
@@ -208,8 +231,15 @@ class Viewer {
 
   Image image_;
   std::string image_path_;
-  bool orbits_ = false;                 // the source is a 3D scene (orbit)
-  double azimuth_ = 0, elevation_ = 0;  // its camera, degrees
+  // The source file shown and its detail renders, when it has detail (has_detail).
+  std::shared_ptr<const SourceFile> file_;
+  std::unique_ptr<DetailWorker> detail_worker_;
+  std::optional<DetailView> detail_asked_;       // the view of the latest detail request
+  std::shared_ptr<const DetailPicture> detail_;  // the worker's latest picture
+  std::uint64_t detail_generation_ = 0;
+  std::uint64_t submitted_request_ = 0;  // the solver's latest request
+  bool orbits_ = false;                  // the source is a 3D scene (orbit)
+  double azimuth_ = 0, elevation_ = 0;   // its camera, degrees
   std::uint64_t image_generation_ = 0;
   std::vector<Lens> lenses_;
   std::vector<std::string> specs_;  // per lens: its --lens text, or "" once it has none

@@ -23,8 +23,10 @@ uniform vec2 u_window;
 uniform float u_flip;  // -1: into a texture, rows top down like the window's (WarpRenderer::redraw)
 out vec2 v_source;
 out vec3 v_heat;
+out vec2 v_window;
 void main() {
   vec2 p = u_origin + a_screen * u_scale;
+  v_window = p;
   gl_Position =
       vec4(2.0 * p.x / u_window.x - 1.0, u_flip * (1.0 - 2.0 * p.y / u_window.y), 0.0, 1.0);
   v_source = a_source;
@@ -32,12 +34,13 @@ void main() {
 }
 )";
 
-// The texture at the source point (in the heatmap pass, its luminance under the triangle's
-// colour); circle outlines where the source point is within about a screen pixel of a circle
-// (fwidth: how far the distance changes across one pixel).
+// The texture at the source point, or the detail picture at the window point (in the heatmap pass,
+// its luminance under the triangle's colour); circle outlines where the source point is within
+// about a screen pixel of a circle (fwidth: how far the distance changes across one pixel).
 const char* const kFragmentShader = R"(#version 330 core
 in vec2 v_source;
 in vec3 v_heat;
+in vec2 v_window;
 uniform float u_heat;  // the heatmap's opacity; 0: the picture
 uniform sampler2D u_texture;
 uniform vec2 u_size;  // source pixels
@@ -46,13 +49,18 @@ uniform vec4 u_colour;
 uniform int u_count;
 uniform vec3 u_circles[32];
 uniform int u_selected;
+uniform int u_detail;
+uniform sampler2D u_detail_texture;
+uniform vec4 u_detail_area;  // the window pixels it covers: x, y, width, height
 out vec4 o_colour;
 void main() {
   if (u_flat != 0) {
     o_colour = u_colour;
     return;
   }
-  vec4 c = texture(u_texture, v_source / u_size);
+  vec4 c = u_detail != 0
+               ? texture(u_detail_texture, (v_window - u_detail_area.xy) / u_detail_area.zw)
+               : texture(u_texture, v_source / u_size);
   if (u_heat > 0.0) {
     float grey = dot(c.rgb, vec3(0.299, 0.587, 0.114));
     c = vec4(u_heat * v_heat + (1.0 - u_heat) * vec3(grey), 1.0);
@@ -84,6 +92,15 @@ unsigned compile(GLenum kind, const char* text) {
   }
   return shader;
 }
+
+// Texel formats by channel count - 1.
+constexpr GLenum kFormats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+constexpr GLenum kInternal[] = {GL_R8, GL_RG8, GL_RGB8, GL_RGBA8};
+// Grey (+ alpha) shown as grey: the red channel in red, green and blue.
+constexpr GLint kSwizzles[4][4] = {{GL_RED, GL_RED, GL_RED, GL_ONE},
+                                   {GL_RED, GL_RED, GL_RED, GL_GREEN},
+                                   {GL_RED, GL_GREEN, GL_BLUE, GL_ONE},
+                                   {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA}};
 
 // The background the window is cleared to, and a cached picture before it is drawn.
 constexpr float kBackground[4] = {0.16f, 0.16f, 0.17f, 1.0f};
@@ -129,7 +146,7 @@ bool same_view(const DrawSettings& a, const DrawSettings& b) {
   return a.window_width == b.window_width && a.window_height == b.window_height &&
          a.origin == b.origin && a.scale == b.scale && a.clip_x == b.clip_x &&
          a.clip_width == b.clip_width && a.pane == b.pane && a.wireframe == b.wireframe &&
-         a.heatmap == b.heatmap && a.heat_opacity == b.heat_opacity;
+         a.heatmap == b.heatmap && a.heat_opacity == b.heat_opacity && a.detail == b.detail;
 }
 
 bool same_outlines(const DrawSettings& a, const DrawSettings& b) {
@@ -166,8 +183,11 @@ WarpRenderer::WarpRenderer() {
   loc_selected_ = glGetUniformLocation(program_, "u_selected");
   loc_heat_ = glGetUniformLocation(program_, "u_heat");
   loc_flip_ = glGetUniformLocation(program_, "u_flip");
+  loc_detail_ = glGetUniformLocation(program_, "u_detail");
+  loc_detail_area_ = glGetUniformLocation(program_, "u_detail_area");
   glUseProgram(program_);
   glUniform1i(glGetUniformLocation(program_, "u_texture"), 0);
+  glUniform1i(glGetUniformLocation(program_, "u_detail_texture"), 1);
 
   // The picture's vertices: screen, source (4 floats); the heatmap's: the same and its colour
   // (4 bytes, normalized).
@@ -208,9 +228,11 @@ WarpRenderer::WarpRenderer() {
   }
   glBindVertexArray(0);
   glGenTextures(1, &texture_);
+  glGenTextures(1, &detail_texture_);
 }
 
 WarpRenderer::~WarpRenderer() {
+  glDeleteTextures(1, &detail_texture_);
   glDeleteTextures(1, &texture_);
   for (Cache& c : caches_) {
     glDeleteFramebuffers(1, &c.framebuffer);
@@ -269,13 +291,6 @@ void WarpRenderer::set_image(const Image& image) {
   }
   texture_width_ = texels.width;
   texture_height_ = texels.height;
-  static constexpr GLenum kFormats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
-  static constexpr GLenum kInternal[] = {GL_R8, GL_RG8, GL_RGB8, GL_RGBA8};
-  // Grey (+ alpha) shown as grey: the red channel in red, green and blue.
-  static constexpr GLint kSwizzles[4][4] = {{GL_RED, GL_RED, GL_RED, GL_ONE},
-                                            {GL_RED, GL_RED, GL_RED, GL_GREEN},
-                                            {GL_RED, GL_GREEN, GL_BLUE, GL_ONE},
-                                            {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA}};
   const int c = texels.channels - 1;
   glBindTexture(GL_TEXTURE_2D, texture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -301,6 +316,23 @@ void WarpRenderer::set_image(const Image& image) {
         }
     }
   ++image_version_;
+}
+
+void WarpRenderer::set_detail(const Image& picture, const Rect& at) {
+  const int c = picture.channels - 1;
+  glBindTexture(GL_TEXTURE_2D, detail_texture_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(kInternal[c]), picture.width, picture.height, 0, kFormats[c],
+               GL_UNSIGNED_BYTE, picture.pixels.data());
+  glTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_RGBA, kSwizzles[c]);
+  // A texel per window pixel, sampled at its centre: linear filtering returns it as it is.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  detail_area_ = at;
+  ++detail_version_;
 }
 
 void WarpRenderer::set_mesh(int pane, const WarpMesh& mesh) {
@@ -487,6 +519,7 @@ void WarpRenderer::draw(const DrawSettings& s) {
   const bool same_warp = m.version == c.mesh_version && same_outlines(s, c.settings);
   if (!c.valid || !(at == c.area) || !same_view(s, c.settings) ||
       c.image_version != image_version_ || (s.heatmap && c.heat_version != m.heat_version) ||
+      (s.detail && c.detail_version != detail_version_) ||
       (!same_warp && (s.heatmap || s.wireframe || !next || !c.changing))) {
     c.area = at;
     redraw(s, m, c, at);
@@ -504,6 +537,7 @@ void WarpRenderer::draw(const DrawSettings& s) {
   c.mesh_version = m.version;
   c.heat_version = m.heat_version;
   c.image_version = image_version_;
+  c.detail_version = detail_version_;
   c.changing = next;
   // Copied into the window, pixel for pixel (the scissor would clip it: off).
   const int bottom = s.window_height - at.y - at.height;
@@ -537,6 +571,11 @@ void WarpRenderer::paint(const DrawSettings& s, const Mesh& m, float flip) const
   if (!circles.empty()) glUniform3fv(loc_circles_, GLsizei(circles.size() / 3), circles.data());
   glUniform1i(loc_selected_, s.selected);
   glUniform1i(loc_flat_, 0);
+  glUniform1i(loc_detail_, s.detail && !detail_area_.empty() ? 1 : 0);
+  glUniform4f(loc_detail_area_, float(detail_area_.x), float(detail_area_.y),
+              float(detail_area_.width), float(detail_area_.height));
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, detail_texture_);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, texture_);
   if (s.heatmap && m.heat_count > 0) {

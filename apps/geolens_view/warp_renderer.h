@@ -14,6 +14,11 @@
 // (an offscreen framebuffer the window's size), drawn again only where something changed, and
 // its area copied to the window every frame: a frame with nothing new costs one copy, and a new
 // warp of the same view redraws only the box of what its lenses moved.
+//
+// A source finer than its frame (a vector map, an SVG) can be shown with its own detail: a picture
+// of the warp rendered on the CPU at the resolution of the window (set_detail) is then what the
+// triangles show, sampled at their window position instead of the image at their source position,
+// so the outlines, wireframe and heatmap are drawn over it as over the image.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -45,6 +50,8 @@ struct DrawSettings {
   /// Circles to outline: (centre x, centre y, radius), source pixels; at most kMaxOutlines.
   std::vector<Eigen::Vector3d> outlines;
   int selected = -1;  ///< the outline drawn in the selection colour, -1: none
+  /// The picture of set_detail instead of the image: it must be of this pane's warp and view.
+  bool detail = false;
 };
 
 /// What draw() did with the panes' cached pictures since the renderer was made.
@@ -109,6 +116,9 @@ class WarpRenderer {
       return x == o.x && y == o.y && width == o.width && height == o.height;
     }
   };
+  /// Uploads `picture` (1 - 4 channels), a pane's warp as shown, to cover window pixels `at`
+  /// (stretched if it has fewer texels): what DrawSettings::detail draws.
+  void set_detail(const Image& picture, const Rect& at);
 
  private:
   // One pane's triangles: indexed for the picture (those that move first, moved_count indices,
@@ -130,7 +140,7 @@ class WarpRenderer {
     bool valid = false;
     Rect area;
     DrawSettings settings;
-    std::uint64_t mesh_version = 0, heat_version = 0, image_version = 0;
+    std::uint64_t mesh_version = 0, heat_version = 0, image_version = 0, detail_version = 0;
     std::optional<Rect> changing;  // what a new warp or outline may change; none: all of it
   };
 
@@ -148,7 +158,9 @@ class WarpRenderer {
   // Draws the picture into c's texture within `dirty` (window pixels).
   void redraw(const DrawSettings& s, const Mesh& m, Cache& c, const Rect& dirty);
 
-  unsigned program_ = 0, texture_ = 0;
+  unsigned program_ = 0, texture_ = 0, detail_texture_ = 0;
+  Rect detail_area_;
+  std::uint64_t detail_version_ = 0;
   std::array<Mesh, kPanes> panes_;
   std::array<Cache, kPanes> caches_;
   bool caching_ = true;
@@ -158,7 +170,7 @@ class WarpRenderer {
   int texture_level_ = 0, texture_width_ = 1, texture_height_ = 1;
   int loc_origin_ = -1, loc_scale_ = -1, loc_window_ = -1, loc_size_ = -1, loc_flat_ = -1,
       loc_colour_ = -1, loc_count_ = -1, loc_circles_ = -1, loc_selected_ = -1, loc_heat_ = -1,
-      loc_flip_ = -1;
+      loc_flip_ = -1, loc_detail_ = -1, loc_detail_area_ = -1;
 };
 
 }  // namespace geolens::view

@@ -445,6 +445,9 @@ TEST_F(View, StatsReportTheStagesTheLibraryTimed) {
   EXPECT_NE(geometric.out.find("texture: level 0 of the image, 320 x 240 texels"),
             std::string::npos)
       << geometric.out;
+  // A plain image has no detail finer than its pixels: none is rendered.
+  EXPECT_NE(geometric.out.find("detail: none shown (the source has none)"), std::string::npos)
+      << geometric.out;
   // A classic lens has no stages, and none are made up for it.
   const ViewRun classic = run(arguments + " --method fisheye");
   ASSERT_EQ(classic.code, 0) << classic.err;
@@ -562,6 +565,76 @@ TEST_F(View, ASourceOpensWithItsFrameAndStyle) {
   EXPECT_NEAR(sea[1], 0xcb, 12);
   EXPECT_NEAR(sea[2], 0xe6, 12);
   expect_refused(run(map + "--lens circle:500,300,20 --screenshot " + path("x.png")), 2, "400x381");
+}
+
+// Mean squared difference between neighbouring pixels (right and below) of the grey of `image` in
+// [x0, x1) x [y0, y1): how sharp it is there.
+double gradient_energy(const Image& image, int x0, int y0, int x1, int y1) {
+  const auto grey = [&](int x, int y) {
+    const uint8_t* p = image.at(x, y);
+    return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+  };
+  double sum = 0;
+  int n = 0;
+  for (int y = y0; y + 1 < y1; ++y)
+    for (int x = x0; x + 1 < x1; ++x, ++n)
+      sum += std::pow(grey(x + 1, y) - grey(x, y), 2) + std::pow(grey(x, y + 1) - grey(x, y), 2);
+  return sum / n;
+}
+
+// A vector map has detail finer than its frame: once the lens is at rest the viewer shows the
+// focus rendered from the finer levels with its labels, as `geolens magnify` draws it, not the
+// frame's pixels magnified (which `set detail off` shows).
+TEST_F(View, AVectorMapShowsItsDetailInTheFocus) {
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  const std::string map =
+      examples + "europe.geojson --style " + examples + "europe_style.json --frame 800x763 ";
+  const std::string lens = " --lens circle:295,328,50:4";
+  const std::string magnified = path("magnify.png");
+  ASSERT_EQ(std::system((std::string(GEOLENS_CLI) + " magnify " + examples + "europe.geojson " +
+                         "--style " + examples + "europe_style.json --size 800x763" + lens +
+                         " -o " + magnified + " > /dev/null")
+                            .c_str()),
+            0);
+  // The window is the frame's size: one window pixel per frame pixel.
+  auto view = [&](const std::string& name, const std::string& lines) {
+    std::ofstream(path(name + ".txt"))
+        << "set outlines off\n"
+        << lines << "screenshot " << path(name + ".png") << "\nquit\n";
+    const ViewRun r = run(map + "--size 800x763 --stats --script " + path(name + ".txt") + lens);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    return std::make_pair(load_image(path(name + ".png")), r.out);
+  };
+  const auto [on, on_stats] = view("on", "");
+  const auto [off, off_stats] = view("off", "set detail off\n");
+  const Image reference = load_image(magnified);
+  ASSERT_EQ(on.width, reference.width);
+  ASSERT_EQ(on.height, reference.height);
+  EXPECT_NE(on_stats.find("detail: shown, 800 x 763 texels for 800 x 763 window pixels"),
+            std::string::npos)
+      << on_stats;
+  EXPECT_NE(off_stats.find("detail: none shown (not ready or off)"), std::string::npos)
+      << off_stats;
+  // The focus: the lens's 50 px radius shown 4x, 200 px about (295, 328); a square well within.
+  const int x0 = 295 - 120, y0 = 328 - 120, x1 = 295 + 120, y1 = 328 + 120;
+  const double on_difference = mean_difference(on, reference, x0, y0, x1, y1);
+  const double off_difference = mean_difference(off, reference, x0, y0, x1, y1);
+  const double on_energy = gradient_energy(on, x0, y0, x1, y1);
+  const double off_energy = gradient_energy(off, x0, y0, x1, y1);
+  const double reference_energy = gradient_energy(reference, x0, y0, x1, y1);
+  // Measured: 0.00 and 24.25 grey levels; gradient energy 1177 (detail), 206 (frame pixels),
+  // 1177 (magnify).
+  RecordProperty("focus_difference_detail", std::to_string(on_difference));
+  RecordProperty("focus_difference_pixels", std::to_string(off_difference));
+  RecordProperty("focus_energy_detail", std::to_string(on_energy));
+  RecordProperty("focus_energy_pixels", std::to_string(off_energy));
+  EXPECT_LT(on_difference, 2.0);
+  EXPECT_LT(on_difference, 0.5 * off_difference);
+  EXPECT_GT(on_energy, 1.5 * off_energy);
+  EXPECT_NEAR(on_energy / reference_energy, 1.0, 0.2);
+  // Beyond the lens's footprint both show the frame.
+  EXPECT_LT(mean_difference(on, off, 700, 0, 800, 763), 3.0);
 }
 
 TEST_F(View, ScreenshotAfterFramesWaitsForTheSolver) {
