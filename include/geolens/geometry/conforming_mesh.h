@@ -59,8 +59,8 @@ struct MeshRefinement {
 /// it sends that far from the mean of its corners', is split at the midpoint of its longest edge
 /// (with the triangle across it, longest-edge propagation); a midpoint of an edge along a curve
 /// is put on the curve (project). Last, slivers (an angle below 10 degrees) are made fatter by
-/// flipping edges (Delaunay's test, the smallest angle growing), except edges along a curve and
-/// flips that would leave more than 30 degrees at a polygon vertex.
+/// flipping edges (Delaunay's test, the smallest angle growing), except edges along a curve or
+/// with a corner on a side, and flips that would leave more than 30 degrees at a polygon vertex.
 ///
 /// New vertices on an edge are shared by both its triangles. Vertices on a side of the mesh
 /// (sides != 0) and vertices placed on an earlier curve do not move; a vertex added on an edge
