@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <utility>
 
 #include "geolens/core/errors.h"
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/lens_session.h"
+#include "geolens/render/render.h"
+#include "geolens/source/mip_pyramid.h"
 
 namespace geolens::view {
 
@@ -177,6 +180,89 @@ void DetailWorker::run() {
       std::lock_guard<std::mutex> lock(mutex_);
       if (error.empty()) latest_ = std::move(picture);
       error_ = std::move(error);
+      busy_ = false;
+    }
+    idle_.notify_all();
+  }
+}
+
+OpenedSource open_frame(const std::string& path, const SourceFileOptions& options) {
+  SourceFile file = open_source(path, options);
+  OpenedSource opened;
+  opened.path = path;
+  opened.kind = file.kind;
+  if (const auto* image = dynamic_cast<const MipPyramid*>(file.source.get())) {
+    opened.image = image->level(0);  // the pixels as they are, not resampled by the renderer
+    return opened;
+  }
+  RenderOptions render_options;
+  render_options.width = file.frame_width;
+  render_options.height = file.frame_height;
+  opened.image = render(identity_warp(file.frame_width, file.frame_height), file, render_options);
+  if (file.scale > 1) opened.detail = std::make_shared<const SourceFile>(std::move(file));
+  return opened;
+}
+
+SourceOpener::SourceOpener() {
+  thread_ = std::thread([this] { run(); });
+}
+
+SourceOpener::~SourceOpener() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+std::uint64_t SourceOpener::submit(const std::string& path, const SourceFileOptions& options) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  waiting_ = ++submitted_;
+  waiting_path_ = path;
+  waiting_options_ = options;
+  wake_.notify_all();
+  return waiting_;
+}
+
+std::optional<SourceOpener::Answer> SourceOpener::take() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::optional<Answer> answer = std::move(done_);
+  done_.reset();
+  return answer;
+}
+
+void SourceOpener::wait_idle() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  idle_.wait(lock, [this] { return !busy_ && waiting_ == 0; });
+}
+
+void SourceOpener::run() {
+  for (;;) {
+    Answer answer;
+    std::string path;
+    SourceFileOptions options;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || waiting_ != 0; });
+      if (stop_) return;
+      answer.request = waiting_;
+      waiting_ = 0;
+      path = std::move(waiting_path_);
+      options = waiting_options_;
+      busy_ = true;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      answer.opened = open_frame(path, options);
+    } catch (const std::exception& e) {
+      answer.error = e.what();
+    }
+    answer.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = std::move(answer);
       busy_ = false;
     }
     idle_.notify_all();

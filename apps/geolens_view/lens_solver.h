@@ -1,7 +1,8 @@
 #pragma once
 // The viewer's work off the UI thread: its solves, through the library's LensWorker (the
-// geometric lens, a LensSession, or a classic lens, ClassicMethod, method_job), and the pictures
-// of a source finer than its frame rendered at the resolution they are shown (DetailWorker). The
+// geometric lens, a LensSession, or a classic lens, ClassicMethod, method_job), the pictures
+// of a source finer than its frame rendered at the resolution they are shown (DetailWorker), and
+// the frames of the files it opens and the views of a 3D scene it turns (SourceOpener). The
 // UI thread submits requests and draws the latest finished answer meanwhile.
 
 #include <Eigen/Core>
@@ -134,6 +135,55 @@ class DetailWorker {
   bool busy_ = false, stop_ = false;
   std::shared_ptr<const DetailPicture> latest_;
   std::string error_;
+  std::thread thread_;  // started by the constructor, once every member above exists
+};
+
+/// A source file opened and its whole frame rendered at zoom 1 (what the viewer shows of it).
+struct OpenedSource {
+  std::string path;
+  std::string kind;  ///< SourceFile::kind
+  Image image;       ///< the frame: a pyramid's level 0 as it is, else rendered with its overlay
+  /// The file, when it has detail finer than its frame (scale > 1, not a pyramid); else null.
+  std::shared_ptr<const SourceFile> detail;
+};
+
+/// Opens `path` with `options` (open_source) and renders its frame as above. Throws as
+/// open_source and render do.
+OpenedSource open_frame(const std::string& path, const SourceFileOptions& options);
+
+/// open_frame on a thread of its own. Only the newest request waits (one submitted while another
+/// waits replaces it); an open under way cannot stop midway, and its answer is kept all the same:
+/// the caller shows an answer only for the request it asked last.
+class SourceOpener {
+ public:
+  SourceOpener();
+  /// Finishes the open under way and joins the thread.
+  ~SourceOpener();
+  SourceOpener(const SourceOpener&) = delete;
+  SourceOpener& operator=(const SourceOpener&) = delete;
+
+  struct Answer {
+    std::uint64_t request = 0;
+    std::optional<OpenedSource> opened;  ///< none when it failed
+    std::string error;                   ///< why it failed (the exception's message)
+    double ms = 0;                       ///< wall-clock time of open_frame, milliseconds
+  };
+  /// Asks for open_frame(path, options); returns the request's number (from 1).
+  std::uint64_t submit(const std::string& path, const SourceFileOptions& options);
+  /// The latest finished answer, once (then none until the next one finishes).
+  std::optional<Answer> take();
+  void wait_idle();  ///< blocks until no request is waiting or being opened
+
+ private:
+  void run();
+
+  std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::uint64_t submitted_ = 0, waiting_ = 0;  // waiting_: the request that waits; 0: none
+  std::string waiting_path_;
+  SourceFileOptions waiting_options_;
+  bool busy_ = false, stop_ = false;
+  std::optional<Answer> done_;
   std::thread thread_;  // started by the constructor, once every member above exists
 };
 

@@ -65,10 +65,10 @@ class Input final : public WindowInput {
     if (key == Key::kEscape) viewer_.cancel_polygon();
     // The arrow keys orbit a 3D source's camera by 15 degrees (the view is rendered again).
     constexpr double kStep = 15;
-    if (key == Key::kLeft) viewer_.try_orbit(-kStep, 0);
-    if (key == Key::kRight) viewer_.try_orbit(kStep, 0);
-    if (key == Key::kUp) viewer_.try_orbit(0, kStep);
-    if (key == Key::kDown) viewer_.try_orbit(0, -kStep);
+    if (key == Key::kLeft) viewer_.orbit(-kStep, 0);
+    if (key == Key::kRight) viewer_.orbit(kStep, 0);
+    if (key == Key::kUp) viewer_.orbit(0, kStep);
+    if (key == Key::kDown) viewer_.orbit(0, -kStep);
   }
   void drop(const std::string& path) override { viewer_.try_open(path); }
 
@@ -133,6 +133,7 @@ int run(const Args& a) {
   };
   std::array<Shown, WarpRenderer::kPanes> shown;
   std::vector<double> frame_ms, latency_ms, solve_ms;
+  int frames_while_opening = 0;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
     window.poll();
@@ -145,6 +146,8 @@ int run(const Args& a) {
       viewer.wait_idle();
     else
       viewer.update();
+    // A frame drawn while a file opens or a view renders off the UI thread (the image before).
+    if (!viewer.status().empty()) ++frames_while_opening;
     const bool fresh = viewer.frame_generation() != shown[0].frame;
     if (viewer.image_generation() != shown_image) {
       renderer.set_image(viewer.image());
@@ -250,6 +253,11 @@ int run(const Args& a) {
     else
       std::printf("detail: none shown (%s)\n",
                   viewer.has_detail() ? "not ready or off" : "the source has none");
+    std::printf(
+        "opened: %d files or views opened and rendered off the UI thread, the last in %.1f ms; "
+        "%d frames drawn meanwhile; longest frame %.1f ms\n",
+        viewer.opened_count(), viewer.opened_ms(), frames_while_opening,
+        frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end()));
     const CacheCounts& counts = renderer.cache_counts();
     std::printf(
         "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures drawn "

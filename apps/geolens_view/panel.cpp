@@ -161,6 +161,9 @@ PanelRequests draw_panel(Viewer& viewer, PanelState& state) {
     ImGui::InputText("##open", &state.open_path);
     ImGui::SameLine();
     if (ImGui::Button("open image")) viewer.try_open(state.open_path);
+    // A file being opened or a view being rendered, off the UI thread: the current image stays.
+    if (const std::string status = viewer.status(); !status.empty())
+      ImGui::TextUnformatted(status.c_str());
     if (viewer.has_image()) {
       ImGui::Text("%s  %d x %d", viewer.image_path().c_str(), viewer.image().width,
                   viewer.image().height);

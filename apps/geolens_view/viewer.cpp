@@ -105,57 +105,71 @@ void Viewer::open(Image image, const std::string& path) {
 }
 
 void Viewer::open_file(const std::string& path) {
-  show_source(path, open_source(path, source_options));
-  OrbitCamera camera;
-  if (orbits_) parse_view(source_options.view, camera);  // valid: the scene was opened with it
-  azimuth_ = camera.azimuth_degrees;
-  elevation_ = camera.elevation_degrees;
+  show_source(open_frame(path, source_options), std::nullopt);
+}
+
+void Viewer::try_open(const std::string& path) {
+  if (!opener_) opener_ = std::make_unique<SourceOpener>();
+  asked_ = Asked{opener_->submit(path, source_options), path, std::nullopt};
 }
 
 bool Viewer::orbit(double d_azimuth, double d_elevation) {
-  if (!orbits_) return false;
-  const double azimuth = std::remainder(azimuth_ + d_azimuth, 360.0);
-  const double elevation = std::clamp(elevation_ + d_elevation, -85.0, 85.0);
+  if (!orbits_ || (asked_ && !asked_->camera)) return false;
+  // From the camera asked last: presses made while a view renders add up.
+  const auto [from_azimuth, from_elevation] =
+      asked_ ? *asked_->camera : std::make_pair(azimuth_, elevation_);
+  const double azimuth = std::remainder(from_azimuth + d_azimuth, 360.0);
+  const double elevation = std::clamp(from_elevation + d_elevation, -85.0, 85.0);
   SourceFileOptions options = source_options;
   options.view = std::to_string(azimuth) + "," + std::to_string(elevation);
-  show_source(image_path_, open_source(image_path_, options));
-  azimuth_ = azimuth;
-  elevation_ = elevation;
+  if (!opener_) opener_ = std::make_unique<SourceOpener>();
+  asked_ =
+      Asked{opener_->submit(image_path_, options), image_path_, std::make_pair(azimuth, elevation)};
   return true;
 }
 
-void Viewer::show_source(const std::string& path, const SourceFile& file) {
-  orbits_ = file.kind == "mesh" || file.kind == "volume";
-  if (const auto* image = dynamic_cast<const MipPyramid*>(file.source.get())) {
-    open(image->level(0), path);  // the pixels as they are, not resampled by the renderer
-    return;
-  }
-  RenderOptions options;
-  options.width = file.frame_width;
-  options.height = file.frame_height;
-  open(render(identity_warp(file.frame_width, file.frame_height), file, options), path);
-  if (file.scale > 1) {
-    file_ = std::make_shared<const SourceFile>(file);
-    detail_worker_ = std::make_unique<DetailWorker>(file_);
-  }
+std::string Viewer::status() const {
+  if (!asked_) return "";
+  if (!asked_->camera) return "opening " + asked_->path + " ...";
+  char view[64];
+  std::snprintf(view, sizeof view, "%g,%g", asked_->camera->first, asked_->camera->second);
+  return std::string("rendering view ") + view + " ...";
 }
 
-std::string Viewer::try_open(const std::string& path) {
-  return reported([&] { open_file(path); });
-}
-
-std::string Viewer::try_orbit(double d_azimuth, double d_elevation) {
-  return reported([&] { orbit(d_azimuth, d_elevation); });
-}
-
-std::string Viewer::reported(const std::function<void()>& action) {
+bool Viewer::take_opened() {
+  if (!asked_) return false;
+  std::optional<SourceOpener::Answer> answer = opener_->take();
+  // An answer to a request replaced since is dropped: the latest one is on its way.
+  if (!answer || answer->request != asked_->request) return false;
+  const Asked asked = std::move(*asked_);
+  asked_.reset();
   try {
-    action();
+    if (!answer->opened) throw InvalidInput(answer->error);
+    show_source(std::move(*answer->opened), asked.camera);
+    ++opened_count_;
+    opened_ms_ = answer->ms;
     message.clear();
-    return "";
+    return true;
   } catch (const std::exception& e) {
-    message = e.what();
-    return message;
+    message = e.what();  // the current image is kept
+    return false;
+  }
+}
+
+void Viewer::show_source(OpenedSource opened, std::optional<std::pair<double, double>> camera) {
+  const bool orbits = opened.kind == "mesh" || opened.kind == "volume";
+  if (orbits && !camera) {
+    OrbitCamera view;
+    parse_view(source_options.view, view);  // valid: the scene was opened with it
+    camera.emplace(view.azimuth_degrees, view.elevation_degrees);
+  }
+  open(std::move(opened.image), opened.path);
+  orbits_ = orbits;
+  azimuth_ = camera ? camera->first : 0;
+  elevation_ = camera ? camera->second : 0;
+  if (opened.detail) {
+    file_ = std::move(opened.detail);
+    detail_worker_ = std::make_unique<DetailWorker>(file_);
   }
 }
 
@@ -546,7 +560,8 @@ void Viewer::delete_selected() {
 }
 
 bool Viewer::update() {
-  if (!solver_) return false;
+  const bool opened = take_opened();
+  if (!solver_) return opened;
   const auto now = std::chrono::steady_clock::now();
   if (dirty_) {
     submitted_request_ = solver_->submit(lenses_, drop_stale_);
@@ -582,7 +597,7 @@ bool Viewer::update() {
     measures_ = measure_frame(frame_);
   }
   update_detail();
-  return fresh;
+  return fresh || opened;
 }
 
 std::optional<DetailView> Viewer::detail_view() const {
@@ -627,7 +642,11 @@ const DetailPicture* Viewer::detail_picture() const {
 }
 
 void Viewer::wait_idle() {
-  if (!solver_) return;
+  if (asked_) opener_->wait_idle();  // its answer is shown by the update below
+  if (!solver_) {
+    update();
+    return;
+  }
   update();  // submits what changed
   solver_->wait_idle();
   if (split_.solver) split_.solver->wait_idle();

@@ -7,7 +7,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,20 +64,31 @@ class Viewer {
   /// scene's camera, a volume's transfer function): the command line's.
   SourceFileOptions source_options;
   /// Reads `path`, an image or any source file open_source reads (source/source_file.h; with
-  /// source_options, its whole frame rendered at zoom 1 with its overlay), and shows it. Throws
+  /// source_options, its whole frame rendered at zoom 1 with its overlay, open_frame), and shows
+  /// it, on the calling thread (the command line's IMAGE, before the window opens). Throws
   /// InvalidInput when it cannot be read.
   void open_file(const std::string& path);
-  /// open_file(path); on failure keeps the current image and returns the one-line reason (empty
-  /// on success). For the panel's Open field and a file dropped on the window.
-  std::string try_open(const std::string& path);
+  /// open_file(path) off the UI thread (a SourceOpener): the current image stays shown, with
+  /// status() saying so, until update() takes the answer and shows it as open_file would; on
+  /// failure the current image is kept and the one-line reason goes to `message`. A later
+  /// request (open or orbit) replaces one not answered yet. For the panel's Open field and a
+  /// file dropped on the window.
+  void try_open(const std::string& path);
   /// Turns the camera of a 3D source (a mesh or a volume, opened at source_options.view, by
   /// default azimuth 30 and elevation 20 degrees) about the scene by `d_azimuth` and `d_elevation`
-  /// degrees (elevation kept in
-  /// [-85, 85]) and shows the new view, rendered again; the lenses stay where they are on the
-  /// screen. Returns false, and does nothing, for any other source. Throws as open_file.
+  /// degrees (elevation kept in [-85, 85]) and asks for the new view, rendered again off the UI
+  /// thread as try_open's open; the lenses stay where they are on the screen. Turns from the
+  /// camera asked last, so that presses made while a view renders add up and only the newest
+  /// camera is rendered; a failure is kept as try_open keeps it. For the arrow keys. Returns
+  /// false, and does nothing, for any other source, or while a file is being opened.
   bool orbit(double d_azimuth, double d_elevation);
-  /// orbit, with a failure kept as try_open keeps it. For the arrow keys.
-  std::string try_orbit(double d_azimuth, double d_elevation);
+  /// "opening PATH ..." or "rendering view AZIMUTH,ELEVATION ..." while a try_open or orbit is
+  /// under way; else empty.
+  std::string status() const;
+  /// The files opened and views rendered off the UI thread and shown so far, and how long the
+  /// latest of them took to open and render (open_frame), milliseconds: for --stats.
+  int opened_count() const { return opened_count_; }
+  double opened_ms() const { return opened_ms_; }
   bool has_image() const { return image_.width > 0; }
   const Image& image() const { return image_; }
   const std::string& image_path() const { return image_path_; }
@@ -182,12 +192,13 @@ class Viewer {
   std::optional<Eigen::Vector2d> source_at(const Eigen::Vector2d& at);
 
   // --- per frame ---
-  /// Submits the lenses if they changed, then takes the solver's latest answer, then asks for the
+  /// Shows a file opened or a view rendered off the UI thread, if it is ready; submits the lenses
+  /// if they changed, then takes the solver's latest answer, then asks for the
   /// detail of the frame and view if they are at rest (`detail`). Returns true if the frame to
   /// draw changed.
   bool update();
-  /// Blocks until the solver has answered every request, and the detail render of its answer
-  /// (if any) is done.
+  /// Blocks until a file being opened or a view being rendered (try_open, orbit) is shown, the
+  /// solver has answered every request, and the detail render of its answer (if any) is done.
   void wait_idle();
   const SolvedFrame& frame() const { return frame_; }
   std::uint64_t frame_generation() const { return frame_generation_; }
@@ -224,10 +235,12 @@ class Viewer {
   void polygon_click(bool double_click);
   const WarpMap* warp_map(int pane = 0);
 
-  // Runs `action`; its exception's message goes to `message` and is returned ("" on success).
-  std::string reported(const std::function<void()>& action);
-  // Shows the whole frame of `file`, opened from `path`, at zoom 1 (open_file).
-  void show_source(const std::string& path, const SourceFile& file);
+  // Shows the whole frame of a source opened (open_file), and its camera when it is a 3D scene:
+  // `azimuth` and `elevation` for an orbit, else source_options.view's.
+  void show_source(OpenedSource opened, std::optional<std::pair<double, double>> camera);
+  // Takes the opener's answer to the latest request, if it is ready, and shows it (or its
+  // failure in `message`). Returns true if the image changed.
+  bool take_opened();
 
   Image image_;
   std::string image_path_;
@@ -240,6 +253,16 @@ class Viewer {
   std::uint64_t submitted_request_ = 0;  // the solver's latest request
   bool orbits_ = false;                  // the source is a 3D scene (orbit)
   double azimuth_ = 0, elevation_ = 0;   // its camera, degrees
+  // The open or orbit asked off the UI thread and not shown yet.
+  struct Asked {
+    std::uint64_t request = 0;  // the opener's
+    std::string path;
+    std::optional<std::pair<double, double>> camera;  // an orbit's azimuth and elevation
+  };
+  std::unique_ptr<SourceOpener> opener_;  // made at the first request
+  std::optional<Asked> asked_;
+  int opened_count_ = 0;
+  double opened_ms_ = 0;
   std::uint64_t image_generation_ = 0;
   std::vector<Lens> lenses_;
   std::vector<std::string> specs_;  // per lens: its --lens text, or "" once it has none

@@ -548,6 +548,40 @@ TEST_F(View, AMeshOpensAndOrbitsUnderItsLens) {
             0.5);
 }
 
+// An orbit renders the new view off the UI thread: presses made before it is shown add up and only
+// the newest camera is shown; a screenshot, as 'wait', waits for it; --stats counts it.
+TEST_F(View, AnOrbitRendersOffTheUiThreadAndTheNewestCameraWins) {
+  std::ofstream(path("box.obj"))
+      << "v -1 -0.5 -0.25\nv 1 -0.5 -0.25\nv 1 0.5 -0.25\nv -1 0.5 -0.25\n"
+         "v -1 -0.5 0.25\nv 1 -0.5 0.25\nv 1 0.5 0.25\nv -1 0.5 0.25\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
+         "f 4 1 5 8\n";
+  auto view = [&](const std::string& name, const std::string& lines) {
+    std::ofstream(path(name + ".txt"))
+        << "set outlines off\n"
+        << lines << "screenshot " << path(name + ".png") << "\nquit\n";
+    ViewRun r =
+        run(path("box.obj") + " --size 320x240 --lens circle:512,512,100:2 --stats --script " +
+            path(name + ".txt"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    return std::make_pair(load_image(path(name + ".png")), r.out);
+  };
+  const auto [front, front_out] = view("front", "");
+  const auto [turned, turned_out] = view("turned", "orbit 90 0\nwait\n");
+  // Three presses in one frame: one view shown, the three turns added up.
+  const auto [pressed, pressed_out] = view("pressed", "orbit 30 0\norbit 30 0\norbit 30 0\n");
+  // Pressed over several frames, the screenshot (no 'wait') still shows the last camera.
+  const auto [later, later_out] =
+      view("later", "orbit 45 0\nframe 2 orbit 45 0\nframe 3 orbit 0 0\n");
+  EXPECT_GT(mean_difference(turned, front), 5.0);
+  EXPECT_LT(mean_difference(pressed, turned), 0.5);
+  EXPECT_LT(mean_difference(later, turned), 0.5);
+  EXPECT_NE(front_out.find("opened: 0 files or views"), std::string::npos) << front_out;
+  EXPECT_NE(turned_out.find("opened: 1 files or views"), std::string::npos) << turned_out;
+  EXPECT_NE(pressed_out.find("opened: 1 files or views"), std::string::npos) << pressed_out;
+}
+
 // A vector map opens framed by --frame in its --style: a lens inside that frame is shown, one
 // beyond it refused as beyond a 400 x 381 picture.
 TEST_F(View, ASourceOpensWithItsFrameAndStyle) {
