@@ -105,85 +105,45 @@ SolvedFrame LensSolver::latest() const {
 
 void LensSolver::wait_idle() { worker_->wait_idle(); }
 
-DetailWorker::DetailWorker(std::shared_ptr<const SourceFile> file) : file_(std::move(file)) {
-  thread_ = std::thread([this] { run(); });
-}
-
-DetailWorker::~DetailWorker() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  thread_.join();
-}
-
-void DetailWorker::submit(std::shared_ptr<const Magnification> warp, const DetailView& view) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  waiting_ = std::move(warp);
-  waiting_view_ = view;
-  wake_.notify_all();
-}
+DetailWorker::DetailWorker(std::shared_ptr<const SourceFile> file)
+    : worker_([file = std::move(file),
+               last = std::shared_ptr<const DetailPicture>()](const Request& r) mutable {
+        // The warp's screen in the picture's texels: window pixel origin + s * scale, from the
+        // covered area's corner, kMaxSide texels a side at most.
+        const DetailView& view = r.view;
+        const double fit = std::min(
+            1.0, double(DetailPicture::kMaxSide) / double(std::max(view.width, view.height)));
+        RenderOptions options;
+        options.width = std::max(1, int(std::lround(view.width * fit)));
+        options.height = std::max(1, int(std::lround(view.height * fit)));
+        WarpMesh framed = r.warp->warp;
+        const Eigen::RowVector2d corner(view.origin.x() - view.x, view.origin.y() - view.y);
+        framed.screen = ((framed.screen * view.scale).rowwise() + corner) * fit;
+        framed.screen_width = options.width;
+        framed.screen_height = options.height;
+        auto picture = std::make_shared<DetailPicture>();
+        picture->view = view;
+        const auto start = std::chrono::steady_clock::now();
+        try {
+          picture->image = render(framed, *file, options);
+        } catch (const std::exception& e) {
+          return Answer{last, e.what()};
+        }
+        picture->render_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        last = std::move(picture);
+        return Answer{last, ""};
+      }) {}
 
 std::shared_ptr<const DetailPicture> DetailWorker::latest() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return latest_;
+  const auto done = worker_.latest();
+  return done ? done->answer.picture : nullptr;
 }
 
 std::string DetailWorker::error() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return error_;
-}
-
-void DetailWorker::wait_idle() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  idle_.wait(lock, [this] { return !busy_ && !waiting_; });
-}
-
-void DetailWorker::run() {
-  for (;;) {
-    std::shared_ptr<const Magnification> warp;
-    DetailView view;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || waiting_; });
-      if (stop_) return;
-      warp = std::move(waiting_);
-      waiting_.reset();
-      view = waiting_view_;
-      busy_ = true;
-    }
-    // The warp's screen in the picture's texels: window pixel origin + s * scale, from the
-    // covered area's corner, kMaxSide texels a side at most.
-    const double fit =
-        std::min(1.0, double(DetailPicture::kMaxSide) / double(std::max(view.width, view.height)));
-    RenderOptions options;
-    options.width = std::max(1, int(std::lround(view.width * fit)));
-    options.height = std::max(1, int(std::lround(view.height * fit)));
-    WarpMesh framed = warp->warp;
-    const Eigen::RowVector2d corner(view.origin.x() - view.x, view.origin.y() - view.y);
-    framed.screen = ((framed.screen * view.scale).rowwise() + corner) * fit;
-    framed.screen_width = options.width;
-    framed.screen_height = options.height;
-    auto picture = std::make_shared<DetailPicture>();
-    picture->view = view;
-    std::string error;
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      picture->image = render(framed, *file_, options);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    picture->render_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (error.empty()) latest_ = std::move(picture);
-      error_ = std::move(error);
-      busy_ = false;
-    }
-    idle_.notify_all();
-  }
+  const auto done = worker_.latest();
+  return done ? done->answer.error : std::string();
 }
 
 OpenedSource open_frame(const std::string& path, const SourceFileOptions& options) {
@@ -203,70 +163,20 @@ OpenedSource open_frame(const std::string& path, const SourceFileOptions& option
   return opened;
 }
 
-SourceOpener::SourceOpener() {
-  thread_ = std::thread([this] { run(); });
-}
-
-SourceOpener::~SourceOpener() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  thread_.join();
-}
-
-std::uint64_t SourceOpener::submit(const std::string& path, const SourceFileOptions& options) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  waiting_ = ++submitted_;
-  waiting_path_ = path;
-  waiting_options_ = options;
-  wake_.notify_all();
-  return waiting_;
-}
+SourceOpener::SourceOpener()
+    : worker_([](const Request& r) {
+        try {
+          return Opened{open_frame(r.path, r.options), ""};
+        } catch (const std::exception& e) {
+          return Opened{std::nullopt, e.what()};
+        }
+      }) {}
 
 std::optional<SourceOpener::Answer> SourceOpener::take() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::optional<Answer> answer = std::move(done_);
-  done_.reset();
-  return answer;
-}
-
-void SourceOpener::wait_idle() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  idle_.wait(lock, [this] { return !busy_ && waiting_ == 0; });
-}
-
-void SourceOpener::run() {
-  for (;;) {
-    Answer answer;
-    std::string path;
-    SourceFileOptions options;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || waiting_ != 0; });
-      if (stop_) return;
-      answer.request = waiting_;
-      waiting_ = 0;
-      path = std::move(waiting_path_);
-      options = waiting_options_;
-      busy_ = true;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      answer.opened = open_frame(path, options);
-    } catch (const std::exception& e) {
-      answer.error = e.what();
-    }
-    answer.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      done_ = std::move(answer);
-      busy_ = false;
-    }
-    idle_.notify_all();
-  }
+  const auto done = worker_.latest();
+  if (!done || done->request == taken_) return std::nullopt;
+  taken_ = done->request;
+  return Answer{done->request, done->answer.opened, done->answer.error, done->ms};
 }
 
 }  // namespace geolens::view

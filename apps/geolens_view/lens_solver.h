@@ -9,6 +9,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -104,38 +105,118 @@ struct DetailPicture {
   double render_ms = 0;  ///< wall-clock time of the render, milliseconds
 };
 
+/// `work` on a thread of its own, for the viewer's jobs that take long (a render, a file opened).
+/// Only the newest request waits (one submitted while another waits replaces it); a job under way
+/// cannot stop midway, and its answer is kept all the same: the caller tells by the request's
+/// number whether an answer is the one it asked for last. `work` runs on that thread only, and
+/// its exceptions must stay inside it.
+template <class Request, class Answer>
+class NewestWorker {
+ public:
+  /// An answer and the number of the request it answers (from 1), and how long `work` took.
+  struct Done {
+    std::uint64_t request = 0;
+    Answer answer;
+    double ms = 0;  ///< wall-clock time, milliseconds
+  };
+
+  explicit NewestWorker(std::function<Answer(const Request&)> work) : work_(std::move(work)) {
+    thread_ = std::thread([this] { run(); });
+  }
+  /// Finishes the job under way and joins the thread.
+  ~NewestWorker() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  NewestWorker(const NewestWorker&) = delete;
+  NewestWorker& operator=(const NewestWorker&) = delete;
+
+  /// Asks for work(request); returns the request's number.
+  std::uint64_t submit(Request request) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    waiting_ = std::move(request);
+    wake_.notify_all();
+    return waiting_number_ = ++submitted_;
+  }
+  /// The latest finished answer (null before the first).
+  std::shared_ptr<const Done> latest() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return done_;
+  }
+  /// Blocks until no request is waiting or being worked on.
+  void wait_idle() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [this] { return !busy_ && !waiting_; });
+  }
+
+ private:
+  void run() {
+    for (;;) {
+      auto done = std::make_shared<Done>();
+      Request request;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [this] { return stop_ || waiting_; });
+        if (stop_) return;
+        request = std::move(*waiting_);
+        waiting_.reset();
+        done->request = waiting_number_;
+        busy_ = true;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      done->answer = work_(request);
+      done->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count();
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_ = std::move(done);
+        busy_ = false;
+      }
+      idle_.notify_all();
+    }
+  }
+
+  const std::function<Answer(const Request&)> work_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::optional<Request> waiting_;  // none: no request waits
+  std::uint64_t submitted_ = 0, waiting_number_ = 0;
+  bool busy_ = false, stop_ = false;
+  std::shared_ptr<const Done> done_;
+  std::thread thread_;  // started by the constructor, once every member above exists
+};
+
 /// Renders warps from `file` (render(warp, file, options), source_file.h: its finer levels and
-/// its overlay, such as a map's labels) on a thread of its own. Only the newest request waits (one
-/// submitted while another waits replaces it); a render under way cannot stop midway, and its
-/// picture is kept all the same: the caller shows a picture only for the view it asked it for.
+/// its overlay, such as a map's labels) on a NewestWorker: the caller shows a picture only for
+/// the view it asked it for.
 class DetailWorker {
  public:
   explicit DetailWorker(std::shared_ptr<const SourceFile> file);
-  /// Finishes the render under way and joins the thread.
-  ~DetailWorker();
-  DetailWorker(const DetailWorker&) = delete;
-  DetailWorker& operator=(const DetailWorker&) = delete;
 
   /// Asks for `warp` (source and screen in frame pixels) shown as `view` says.
-  void submit(std::shared_ptr<const Magnification> warp, const DetailView& view);
-  /// The latest finished picture (null before the first), and why the latest render failed
+  void submit(std::shared_ptr<const Magnification> warp, const DetailView& view) {
+    worker_.submit({std::move(warp), view});
+  }
+  /// The latest picture rendered (null before the first), and why the latest render failed
   /// (empty if it did not).
   std::shared_ptr<const DetailPicture> latest() const;
   std::string error() const;
-  void wait_idle();  ///< blocks until no request is waiting or being rendered
+  void wait_idle() { worker_.wait_idle(); }  ///< until no request is waiting or being rendered
 
  private:
-  void run();
-
-  std::shared_ptr<const SourceFile> file_;
-  mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::shared_ptr<const Magnification> waiting_;  // null: none waits
-  DetailView waiting_view_;
-  bool busy_ = false, stop_ = false;
-  std::shared_ptr<const DetailPicture> latest_;
-  std::string error_;
-  std::thread thread_;  // started by the constructor, once every member above exists
+  struct Request {
+    std::shared_ptr<const Magnification> warp;
+    DetailView view;
+  };
+  struct Answer {
+    std::shared_ptr<const DetailPicture> picture;  // the latest rendered, even if this one failed
+    std::string error;
+  };
+  NewestWorker<Request, Answer> worker_;
 };
 
 /// A source file opened and its whole frame rendered at zoom 1 (what the viewer shows of it).
@@ -151,16 +232,10 @@ struct OpenedSource {
 /// open_source and render do.
 OpenedSource open_frame(const std::string& path, const SourceFileOptions& options);
 
-/// open_frame on a thread of its own. Only the newest request waits (one submitted while another
-/// waits replaces it); an open under way cannot stop midway, and its answer is kept all the same:
-/// the caller shows an answer only for the request it asked last.
+/// open_frame on a NewestWorker: the caller shows an answer only for the request it asked last.
 class SourceOpener {
  public:
   SourceOpener();
-  /// Finishes the open under way and joins the thread.
-  ~SourceOpener();
-  SourceOpener(const SourceOpener&) = delete;
-  SourceOpener& operator=(const SourceOpener&) = delete;
 
   struct Answer {
     std::uint64_t request = 0;
@@ -169,22 +244,24 @@ class SourceOpener {
     double ms = 0;                       ///< wall-clock time of open_frame, milliseconds
   };
   /// Asks for open_frame(path, options); returns the request's number (from 1).
-  std::uint64_t submit(const std::string& path, const SourceFileOptions& options);
-  /// The latest finished answer, once (then none until the next one finishes).
+  std::uint64_t submit(const std::string& path, const SourceFileOptions& options) {
+    return worker_.submit({path, options});
+  }
+  /// The latest finished answer, once (then none until the next one finishes). UI thread only.
   std::optional<Answer> take();
-  void wait_idle();  ///< blocks until no request is waiting or being opened
+  void wait_idle() { worker_.wait_idle(); }  ///< until no request is waiting or being opened
 
  private:
-  void run();
-
-  std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::uint64_t submitted_ = 0, waiting_ = 0;  // waiting_: the request that waits; 0: none
-  std::string waiting_path_;
-  SourceFileOptions waiting_options_;
-  bool busy_ = false, stop_ = false;
-  std::optional<Answer> done_;
-  std::thread thread_;  // started by the constructor, once every member above exists
+  struct Request {
+    std::string path;
+    SourceFileOptions options;
+  };
+  struct Opened {
+    std::optional<OpenedSource> opened;
+    std::string error;
+  };
+  NewestWorker<Request, Opened> worker_;
+  std::uint64_t taken_ = 0;  // the request of the answer taken last
 };
 
 }  // namespace geolens::view
