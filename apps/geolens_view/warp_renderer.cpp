@@ -192,36 +192,25 @@ WarpRenderer::WarpRenderer() {
   // The picture's vertices: screen, source (4 floats); the heatmap's: the same and its colour
   // (4 bytes, normalized).
   constexpr GLsizei kHeatStride = 4 * sizeof(float) + 4;
+  // A vertex array and its buffer, bound, with the screen and source positions (attributes 0
+  // and 1) at the start of each vertex of `stride` bytes.
+  auto positions = [](unsigned& vao, unsigned& vbo, GLsizei stride) {
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+  };
   for (Mesh& m : panes_) {
-    glGenVertexArrays(1, &m.vao);
-    glGenBuffers(1, &m.vbo);
+    positions(m.vao, m.vbo, 4 * sizeof(float));
     glGenBuffers(1, &m.ebo);
-    glBindVertexArray(m.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
-                          reinterpret_cast<const void*>(2 * sizeof(float)));
-    glGenVertexArrays(1, &m.quad_vao);
-    glGenBuffers(1, &m.quad_vbo);
-    glBindVertexArray(m.quad_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m.quad_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 4 * sizeof(float),
-                          reinterpret_cast<const void*>(2 * sizeof(float)));
-    glGenVertexArrays(1, &m.heat_vao);
-    glGenBuffers(1, &m.heat_vbo);
-    glBindVertexArray(m.heat_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, m.heat_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kHeatStride, nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, kHeatStride,
-                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    positions(m.quad_vao, m.quad_vbo, 4 * sizeof(float));
+    positions(m.heat_vao, m.heat_vbo, kHeatStride);
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 3, GL_UNSIGNED_BYTE, GL_TRUE, kHeatStride,
                           reinterpret_cast<const void*>(4 * sizeof(float)));
