@@ -1,26 +1,41 @@
 #include "render3d/voxel_types.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 namespace geolens::detail {
 
-int voxel_bytes(VoxelType type) {
+namespace {
+
+// f(T()) for the C++ type T that `type` stands for.
+template <typename F>
+auto with_type(VoxelType type, F&& f) {
   switch (type) {
     case VoxelType::int8:
+      return f(int8_t());
     case VoxelType::uint8:
-      return 1;
+      return f(uint8_t());
     case VoxelType::int16:
+      return f(int16_t());
     case VoxelType::uint16:
-      return 2;
+      return f(uint16_t());
     case VoxelType::int32:
+      return f(int32_t());
     case VoxelType::uint32:
+      return f(uint32_t());
     case VoxelType::float32:
-      return 4;
+      return f(float());
     case VoxelType::float64:
-      return 8;
+      return f(double());
   }
-  return 1;
+  return f(uint8_t());
+}
+
+}  // namespace
+
+int voxel_bytes(VoxelType type) {
+  return with_type(type, [](auto t) { return int(sizeof(t)); });
 }
 
 std::string voxel_type_name(VoxelType type) {
@@ -58,54 +73,17 @@ T load(const unsigned char* data, bool swap) {
   return value;
 }
 
-template <typename T>
-void decode(const unsigned char* data, size_t count, bool swap, float* out) {
-  for (size_t i = 0; i < count; ++i) out[i] = float(load<T>(data + i * sizeof(T), swap));
-}
-
 }  // namespace
 
 void decode_voxels(const unsigned char* data, size_t count, VoxelType type, bool swap, float* out) {
-  switch (type) {
-    case VoxelType::int8:
-      return decode<int8_t>(data, count, swap, out);
-    case VoxelType::uint8:
-      return decode<uint8_t>(data, count, swap, out);
-    case VoxelType::int16:
-      return decode<int16_t>(data, count, swap, out);
-    case VoxelType::uint16:
-      return decode<uint16_t>(data, count, swap, out);
-    case VoxelType::int32:
-      return decode<int32_t>(data, count, swap, out);
-    case VoxelType::uint32:
-      return decode<uint32_t>(data, count, swap, out);
-    case VoxelType::float32:
-      return decode<float>(data, count, swap, out);
-    case VoxelType::float64:
-      return decode<double>(data, count, swap, out);
-  }
+  with_type(type, [&](auto t) {
+    using T = decltype(t);
+    for (size_t i = 0; i < count; ++i) out[i] = float(load<T>(data + i * sizeof(T), swap));
+  });
 }
 
 double decode_sample(const unsigned char* data, VoxelType type, bool swap) {
-  switch (type) {
-    case VoxelType::int8:
-      return load<int8_t>(data, swap);
-    case VoxelType::uint8:
-      return load<uint8_t>(data, swap);
-    case VoxelType::int16:
-      return load<int16_t>(data, swap);
-    case VoxelType::uint16:
-      return load<uint16_t>(data, swap);
-    case VoxelType::int32:
-      return load<int32_t>(data, swap);
-    case VoxelType::uint32:
-      return load<uint32_t>(data, swap);
-    case VoxelType::float32:
-      return load<float>(data, swap);
-    case VoxelType::float64:
-      return load<double>(data, swap);
-  }
-  return 0;
+  return with_type(type, [&](auto t) { return double(load<decltype(t)>(data, swap)); });
 }
 
 }  // namespace geolens::detail
