@@ -29,9 +29,11 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
   c.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
       ->capture_default_str();
-  c.add_option("--mesh-tolerance", a.mesh_tolerance,
-               "focus model: the grid is refined where the lens's start strays from linear over "
-               "a triangle by more than this, output pixels, >= 0 (0: not refined)")
+  c.add_option(
+       "--mesh-tolerance", a.mesh_tolerance,
+       "focus model: the grid is refined where the lens's start strays from linear over "
+       "a triangle by more than this, output pixels, or 1/400 of the smallest lens's reach, "
+       ">= 0 (0: not refined)")
       ->capture_default_str();
   c.add_option("--subdivide", a.subdivide,
                "bisection rounds refining triangles the lift stretches, in [0, 8] (0: none)")

@@ -58,8 +58,8 @@ std::string to_string(LensModel model);
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
   /// kFocus: the grid is refined where the lens's start (focus_start) strays from linear over a
-  /// triangle by more than this, output pixels (>= 0; 0: not refined). A draft (LensSession)
-  /// is not refined.
+  /// triangle by more than this, output pixels, or than 1/400 of the smallest region's reach
+  /// (>= 0; 0: not refined). A draft (LensSession) is not refined.
   double mesh_tolerance = 0.2;
   Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
   double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
