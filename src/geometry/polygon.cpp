@@ -53,12 +53,17 @@ bool crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double y, doubl
 
 }  // namespace
 
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
+double segment_squared_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a;
   const double length2 = ab.squaredNorm();
   const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
+  return (p - (a + t * ab)).squaredNorm();
+}
+
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+  return std::sqrt(segment_squared_distance(p, a, b));
 }
 
 void validate_polygon(const std::vector<Eigen::Vector2d>& vertices, const char* function) {

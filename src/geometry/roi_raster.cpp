@@ -81,10 +81,10 @@ std::shared_ptr<FieldShape> polygon_shape(const std::vector<Eigen::Vector2d>& ve
   shape->distance_at = [field, vertices](const Eigen::Vector2d& p) {
     if (field->index.contains(p)) return 0.0;
     // Every edge (the index's bands serve short reaches; this one is unbounded).
-    double d = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < vertices.size(); ++i)
-      d = std::min(d, segment_distance(p, vertices[i], vertices[(i + 1) % vertices.size()]));
-    return d;
+    double d2 = std::numeric_limits<double>::infinity();
+    for (size_t i = 0, j = vertices.size() - 1; i < vertices.size(); j = i++)
+      d2 = std::min(d2, segment_squared_distance(p, vertices[j], vertices[i]));
+    return std::sqrt(d2);
   };
   for (const Eigen::Vector2d& v : vertices)
     shape->largest_reach = std::max(shape->largest_reach, (v - shape->peak_point).norm());

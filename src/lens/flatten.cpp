@@ -314,13 +314,11 @@ inline Eigen::Matrix2d Flattener::target(const Triangle& t, const Eigen::Matrix2
   }
   // Project the singular values (s1, s2), s1 >= |s2|, onto the cone s2 <= s1 <= K s2: inside it
   // J is its own target; otherwise the closest point is on the ray s2 = s1 / K.
-  const SignedSvd2 d = signed_svd(J);
+  const Eigen::Vector2d s = signed_singular_values(J);
   const double K = t.anisotropy;
-  if (d.s2 > 0 && d.s1 <= K * d.s2) return J;
-  const double s2 = std::max(0.0, (K * d.s1 + d.s2) / (K * K + 1));
-  const Eigen::Matrix2d U = Eigen::Rotation2Dd(d.phi).toRotationMatrix();
-  const Eigen::Matrix2d V = Eigen::Rotation2Dd(d.theta).toRotationMatrix();
-  return U * Eigen::Vector2d(K * s2, s2).asDiagonal() * V;
+  if (s(1) > 0 && s(0) <= K * s(1)) return J;
+  const double s2 = std::max(0.0, (K * s(0) + s(1)) / (K * K + 1));
+  return with_singular_values(J, K * s2, s2);
 }
 
 bool Flattener::keeps_fixed(const Eigen::MatrixX2d& X, const Eigen::MatrixXd& values) const {
@@ -342,8 +340,8 @@ void Flattener::admit_anisotropy(const Eigen::MatrixX2d& X) {
   for (size_t f = 0; f < triangles_.size(); ++f) {
     Triangle& t = triangles_[f];
     if (t.kind != Triangle::kBounded) continue;
-    const SignedSvd2 d = signed_svd(jacobian(t, int(f), X));
-    if (d.s2 > 0) t.anisotropy = std::max(t.anisotropy, d.s1 / d.s2);
+    const Eigen::Vector2d s = signed_singular_values(jacobian(t, int(f), X));
+    if (s(1) > 0) t.anisotropy = std::max(t.anisotropy, s(0) / s(1));
   }
 }
 

@@ -68,6 +68,29 @@ double farthest_crossing(const Region& region, const Eigen::Vector2d& c, const E
   return t;
 }
 
+// The direction of w as a fraction of a turn from the x axis towards y, in [0, 1): atan2 reduced
+// to one octant and there a polynomial (Abramowitz and Stegun 4.4.49, |error| <= 2e-8 rad), four
+// to five times faster than std::atan2, which the ring evaluates at every point it places.
+double turns(const Eigen::Vector2d& w) {
+  const double ax = std::abs(w.x()), ay = std::abs(w.y()), high = std::max(ax, ay);
+  if (!(high > 0)) return 0;
+  const double z = std::min(ax, ay) / high, z2 = z * z;
+  // atan z = z (c0 + c1 z^2 + ... + c7 z^14) on [0, 1], by Horner's rule, scaled to be pi / 4
+  // at z = 1 exactly: the octants then meet without a step (one of 2e-8 rad put a step of 7e-6
+  // px into the footprint's edge, and the mesh that followed it made a triangle of area 0).
+  constexpr std::array<double, 8> c = {0.9999993329, -0.3332985605, 0.1994653599, -0.1390853351,
+                                       0.0964200441, -0.0559098861, 0.0218612288, -0.0040540580};
+  constexpr double at_one = c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7];
+  double sum = 0;
+  for (auto k = c.rbegin(); k != c.rend(); ++k) sum = sum * z2 + *k;
+  double a = z * sum * (std::numbers::pi / 4 / at_one);
+  if (ay > ax) a = std::numbers::pi / 2 - a;
+  if (w.x() < 0) a = std::numbers::pi - a;
+  if (w.y() < 0) a = 2 * std::numbers::pi - a;
+  const double t = a / (2 * std::numbers::pi);
+  return t < 1 ? t : 0.0;
+}
+
 // A convex corner of a polygon region: the outward unit normals of its two edges.
 struct Miter {
   Eigen::Vector2d corner, n1, n2;
@@ -242,8 +265,7 @@ struct Ring {
       for (const Eigen::Vector2d& v :
            lenses[k].region.outline().value_or(std::vector<Eigen::Vector2d>{})) {
         const Eigen::Vector2d w = v - centre;
-        double a = std::atan2(w.y(), w.x()) / (2 * std::numbers::pi) * kBins;
-        if (a < 0) a += kBins;
+        const double a = turns(w) * kBins;
         const int below = std::min(int(a), kBins - 1);
         for (const int bin : {below, (below + 1) % kBins})
           found[size_t(bin)] = std::max(found[size_t(bin)], std::min(w.norm() + near, reach));
@@ -266,8 +288,7 @@ struct Ring {
 
   double inner(const Eigen::Vector2d& u) const {
     if (inner_.size() == 1) return inner_[0];
-    double a = std::atan2(u.y(), u.x()) / (2 * std::numbers::pi) * kBins;
-    if (a < 0) a += kBins;
+    const double a = turns(u) * kBins;
     const int k = std::min(int(a), kBins - 1);
     const double w = a - k;
     return (1 - w) * inner_[size_t(k)] + w * inner_[size_t((k + 1) % kBins)];

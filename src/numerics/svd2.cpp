@@ -21,4 +21,29 @@ SignedSvd2 signed_svd(const Eigen::Matrix2d& J) {
   return s;
 }
 
+Eigen::Vector2d signed_singular_values(const Eigen::Matrix2d& J) {
+  const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
+  const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
+  const double Q = std::hypot(E, H), R = std::hypot(F, G);
+  return Eigen::Vector2d(Q + R, Q - R);
+}
+
+// Rot(phi) diag(x, y) Rot(theta) = (x + y) / 2 Rot(phi + theta) + (x - y) / 2 Rot(phi) diag(1, -1)
+// Rot(theta), and diag(1, -1) Rot(theta) = Rot(-theta) diag(1, -1), so the second term is the
+// reflection of angle phi - theta = atan2(G, F): [F G; G -F] / R; the first term's rotation is
+// [E -H; H E] / Q (atan2(0, 0) = 0 where Q or R is 0, as in signed_svd).
+Eigen::Matrix2d with_singular_values(const Eigen::Matrix2d& J, double x, double y) {
+  const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
+  const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
+  const double Q = std::hypot(E, H), R = std::hypot(F, G);
+  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity(), reflection;
+  if (Q > 0) rotation << E / Q, -H / Q, H / Q, E / Q;
+  if (R > 0) {
+    reflection << F / R, G / R, G / R, -F / R;
+  } else {
+    reflection << 1, 0, 0, -1;
+  }
+  return 0.5 * (x + y) * rotation + 0.5 * (x - y) * reflection;
+}
+
 }  // namespace geolens

@@ -25,6 +25,9 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path);
 /// The distance from p to the segment a-b (to a where a == b), pixels.
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b);
+/// Its square (no square root: for the nearest of many segments).
+double segment_squared_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                const Eigen::Vector2d& b);
 
 /// Which nodes of the raster origin + cell * (i, j), i in [0, width), j in [0, height) (pixels),
 /// lie inside the polygon (a valid one, see validate_polygon). Returns width * height flags,

@@ -14,4 +14,11 @@ struct SignedSvd2 {
 
 SignedSvd2 signed_svd(const Eigen::Matrix2d& J);
 
+/// signed_svd's (s1, s2) alone, without the angles (no trigonometry).
+Eigen::Vector2d signed_singular_values(const Eigen::Matrix2d& J);
+
+/// Rot(phi) * diag(x, y) * Rot(theta) for signed_svd(J)'s angles, without computing them:
+/// J with its signed singular values replaced by x and y.
+Eigen::Matrix2d with_singular_values(const Eigen::Matrix2d& J, double x, double y);
+
 }  // namespace geolens
