@@ -91,37 +91,6 @@ double turns(const Eigen::Vector2d& w) {
   return t < 1 ? t : 0.0;
 }
 
-// A convex corner of a polygon region: the outward unit normals of its two edges.
-struct Miter {
-  Eigen::Vector2d corner, n1, n2;
-};
-
-// The convex corners of a region's outline (none for other regions).
-std::vector<Miter> miters(const Region& region) {
-  std::vector<Miter> out;
-  const std::optional<std::vector<Eigen::Vector2d>> outline = region.outline();
-  if (!outline) return out;
-  const std::vector<Eigen::Vector2d>& v = *outline;
-  const size_t n = v.size();
-  double area2 = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d &a = v[k], &b = v[(k + 1) % n];
-    area2 += a.x() * b.y() - a.y() * b.x();
-  }
-  const double turn = area2 > 0 ? 1 : -1;  // the sign of a convex corner's turn
-  auto normal = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    const Eigen::Vector2d d = (b - a).normalized();
-    return Eigen::Vector2d(turn * d.y(), -turn * d.x());
-  };
-  for (size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d &a = v[(k + n - 1) % n], &c = v[k], &b = v[(k + 1) % n];
-    const Eigen::Vector2d e1 = c - a, e2 = b - c;
-    if (turn * (e1.x() * e2.y() - e1.y() * e2.x()) > 0)
-      out.push_back({c, normal(a, c), normal(c, b)});
-  }
-  return out;
-}
-
 // One focus group's ring about `centre` (the group's, or a point on the image side its regions
 // cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
 // smooth envelope of the farthest point within `near` of a region) and the footprint's edge
@@ -131,37 +100,7 @@ struct Ring {
   static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
   Eigen::Vector2d centre, disk_centre;
   double disk_radius, ratio, near, cell, width, height, margin = 0;
-  std::vector<double> inner_;               // per bin, or one value for a circle about its centre
-  std::vector<std::vector<Miter>> miters_;  // per lens of the group
-
-  // The distance from p to the group's regions as the ring reads it: the Euclidean one, but
-  // in the normal cone of a convex corner of a polygon (between its edges' outward normals) no
-  // more than the larger of the distances to its two edges' lines. So the ring has a crease
-  // along the corner's bisector instead of a cone at the corner, which the mesh's triangles
-  // there average without folding (a triangle that spans a wide angle as seen from a cone's
-  // apex folds under its linear average). A minimum over every corner, not the nearest corner's
-  // value: that jumped where the nearest corner changed (3 px on a mask's outline, 200 px out),
-  // and the ring folded the mesh along the line. Each corner's value is at least the Euclidean
-  // distance on its cone's sides, so the minimum is continuous (and 1-Lipschitz).
-  double distance(const FocusGroup& group, const std::vector<Lens>& lenses,
-                  const Eigen::Vector2d& p) const {
-    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-      return a.x() * b.y() - a.y() * b.x();
-    };
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < group.lenses.size(); ++k) {
-      double d = lenses[group.lenses[k]].region.distance(p);
-      for (const Miter& m : miters_[k]) {
-        // p - corner = a n1 + b n2 with a, b >= 0 in the cone.
-        const Eigen::Vector2d w = p - m.corner;
-        const double det = cross(m.n1, m.n2);
-        if (det == 0 || cross(w, m.n2) / det < 0 || cross(m.n1, w) / det < 0) continue;
-        d = std::min(d, std::max(m.n1.dot(w), m.n2.dot(w)));
-      }
-      best = std::min(best, d);
-    }
-    return best;
-  }
+  std::vector<double> inner_;  // per bin, or one value for a circle about its centre
 
   Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
        double width_, double height_)
@@ -172,7 +111,6 @@ struct Ring {
         cell(cell_),
         width(width_),
         height(height_) {
-    for (size_t k : group.lenses) miters_.push_back(miters(lenses[k].region));
     // A region over an image side is magnified about a point on that side, so the side stays.
     Eigen::AlignedBox2d b;
     for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
@@ -326,7 +264,7 @@ struct Ring {
     p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
     p.inner = inner(p.u);
     p.edge = edge(p.u, p.inner);
-    p.s = std::max(p.t, p.inner + std::max(distance(group, lenses, q) - near, 0.0));
+    p.s = std::max(p.t, p.inner + std::max(group_distance(group, lenses, q) - near, 0.0));
     return p;
   }
 };
