@@ -459,6 +459,29 @@ TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
   EXPECT_THROW(footprint_sweep(512, 512, lens, options, {1.5}), InvalidInput);  // not > zoom
 }
 
+// At zoom 3 over the sweep's footprints, the extremes of docs/reproduction's table, on a focus of
+// 20 px: the mesh is refined relative to the region's size too (at a 0.2 px tolerance alone the
+// largest footprint measured 1.26 times the bound).
+TEST(FootprintSweep, FocusLensWithinAQuarterOfTheBoundAtZoomThree) {
+  LensOptions options;
+  options.mesh = 200;
+  const Lens lens{Region::circle({256, 256}, 20), 3.0};
+  const Sweep sweep = footprint_sweep(512, 512, lens, options, {4, 12}, 50);
+  int found = 0;
+  for (size_t i = 0; i < sweep.ratios.size(); ++i) {
+    SCOPED_TRACE(sweep.ratios[i]);
+    for (const SweepPoint& p : sweep.points) {
+      if (p.method != "geometric" || p.ratio != sweep.ratios[i]) continue;
+      ++found;
+      EXPECT_NEAR(p.zoom, 3.0, 0.03);
+      EXPECT_LE(p.uniformity, 1.01);
+      EXPECT_LE(p.shape_max, 1.25 * sweep.bound[i]);
+      EXPECT_GE(p.shape_max, sweep.bound[i] * (1 - 1e-9));  // no radial lens does better
+    }
+  }
+  EXPECT_EQ(found, 2);
+}
+
 }  // namespace
 }  // namespace geolens
 
