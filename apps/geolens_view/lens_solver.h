@@ -49,6 +49,10 @@ struct SolvedFrame {
 /// answered at once with the identity (no lens method takes one).
 class LensSolver {
  public:
+  /// The geometric lens's drafts, a drag's frames, on a grid of at most this many vertices
+  /// (LensOptions::draft_mesh, unless the options set one).
+  static constexpr int kDraftMesh = 50;
+
   /// `method` one of method_names(); `options` the geometric lens's (its mesh also sets the
   /// classic lens's grid). Throws InvalidInput for an unknown method or invalid options.
   LensSolver(int width, int height, const std::string& method, const LensOptions& options);

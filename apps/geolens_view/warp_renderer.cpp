@@ -21,6 +21,7 @@ uniform vec2 u_origin;
 uniform float u_scale;
 uniform vec2 u_window;
 uniform float u_flip;  // -1: into a texture, rows top down like the window's (WarpRenderer::redraw)
+uniform float u_depth;  // 0: the moving triangles, in front of the in-place quad's 0.5
 out vec2 v_source;
 out vec3 v_heat;
 out vec2 v_window;
@@ -28,7 +29,7 @@ void main() {
   vec2 p = u_origin + a_screen * u_scale;
   v_window = p;
   gl_Position =
-      vec4(2.0 * p.x / u_window.x - 1.0, u_flip * (1.0 - 2.0 * p.y / u_window.y), 0.0, 1.0);
+      vec4(2.0 * p.x / u_window.x - 1.0, u_flip * (1.0 - 2.0 * p.y / u_window.y), u_depth, 1.0);
   v_source = a_source;
   v_heat = a_heat;
 }
@@ -183,6 +184,7 @@ WarpRenderer::WarpRenderer() {
   loc_selected_ = glGetUniformLocation(program_, "u_selected");
   loc_heat_ = glGetUniformLocation(program_, "u_heat");
   loc_flip_ = glGetUniformLocation(program_, "u_flip");
+  loc_depth_ = glGetUniformLocation(program_, "u_depth");
   loc_detail_ = glGetUniformLocation(program_, "u_detail");
   loc_detail_area_ = glGetUniformLocation(program_, "u_detail_area");
   glUseProgram(program_);
@@ -226,6 +228,7 @@ WarpRenderer::~WarpRenderer() {
   for (Cache& c : caches_) {
     glDeleteFramebuffers(1, &c.framebuffer);
     glDeleteTextures(1, &c.texture);
+    glDeleteRenderbuffers(1, &c.depth);
   }
   for (Mesh& m : panes_) {
     glDeleteBuffers(1, &m.quad_vbo);
@@ -465,9 +468,14 @@ bool WarpRenderer::reserve(Cache& c, int width, int height) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  if (c.depth == 0) glGenRenderbuffers(1, &c.depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, c.depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
   if (c.framebuffer == 0) glGenFramebuffers(1, &c.framebuffer);
   glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c.texture, 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, c.depth);
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return complete;
@@ -541,13 +549,19 @@ void WarpRenderer::draw(const DrawSettings& s) {
 void WarpRenderer::paint(const DrawSettings& s, const Mesh& m, float flip) const {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
+  // An opaque picture covers what is below it: no blending (a third of llvmpipe's fill).
+  if (opaque_) {
+    glDisable(GL_BLEND);
+  } else {
+    glEnable(GL_BLEND);
+  }
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_);
   glUniform2f(loc_origin_, float(s.origin.x()), float(s.origin.y()));
   glUniform1f(loc_scale_, float(s.scale));
   glUniform2f(loc_window_, float(s.window_width), float(s.window_height));
   glUniform1f(loc_flip_, flip);
+  glUniform1f(loc_depth_, 0.0f);
   // The texture's extent in source pixels: its level's texels are 2^level source pixels each
   // (a level's sides round up, so it may reach past the image).
   glUniform2f(loc_size_, float(texture_width_ << texture_level_),
@@ -573,15 +587,25 @@ void WarpRenderer::paint(const DrawSettings& s, const Mesh& m, float flip) const
     glDrawArrays(GL_TRIANGLES, 0, m.heat_count);
   } else {
     glUniform1f(loc_heat_, 0.0f);
+    glBindVertexArray(m.vao);
     if (m.quad && opaque_) {
+      // The moving triangles first, then the quad behind them where they left the depth clear:
+      // each pixel shaded once (drawn over the quad, the triangles' area was shaded twice).
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glDrawElements(GL_TRIANGLES, m.moved_count, GL_UNSIGNED_INT, nullptr);
+      glUniform1f(loc_depth_, 0.5f);
       glBindVertexArray(m.quad_vao);
       glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      glUniform1f(loc_depth_, 0.0f);
+      glDisable(GL_DEPTH_TEST);
+    } else {
+      glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
     }
-    glBindVertexArray(m.vao);
-    glDrawElements(GL_TRIANGLES, m.quad && opaque_ ? m.moved_count : m.index_count, GL_UNSIGNED_INT,
-                   nullptr);
   }
   if (s.wireframe) {
+    glEnable(GL_BLEND);
     glBindVertexArray(m.vao);
     glUniform1i(loc_flat_, 1);
     glUniform4f(loc_colour_, 0.1f, 0.9f, 0.9f, 0.45f);

@@ -135,7 +135,7 @@ class WarpRenderer {
   // One pane's picture as last drawn into its texture (the window's size; the picture covers
   // `area` of it), and what it was drawn from.
   struct Cache {
-    unsigned framebuffer = 0, texture = 0;
+    unsigned framebuffer = 0, texture = 0, depth = 0;
     int width = 0, height = 0;
     bool valid = false;
     Rect area;
@@ -170,7 +170,7 @@ class WarpRenderer {
   int texture_level_ = 0, texture_width_ = 1, texture_height_ = 1;
   int loc_origin_ = -1, loc_scale_ = -1, loc_window_ = -1, loc_size_ = -1, loc_flat_ = -1,
       loc_colour_ = -1, loc_count_ = -1, loc_circles_ = -1, loc_selected_ = -1, loc_heat_ = -1,
-      loc_flip_ = -1, loc_detail_ = -1, loc_detail_area_ = -1;
+      loc_flip_ = -1, loc_depth_ = -1, loc_detail_ = -1, loc_detail_area_ = -1;
 };
 
 }  // namespace geolens::view

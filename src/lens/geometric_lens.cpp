@@ -70,6 +70,7 @@ void validate(const LensOptions& o) {
   require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
   require_mesh_vertices(o.mesh, "validate");
+  if (o.draft_mesh != 0) require_mesh_vertices(o.draft_mesh, "validate");
   require(std::isfinite(o.mesh_tolerance) && o.mesh_tolerance >= 0, "validate",
           "mesh tolerance must be >= 0, got " + std::to_string(o.mesh_tolerance));
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",

@@ -1,5 +1,6 @@
 #include "geolens/lens/lens_session.h"
 
+#include <optional>
 #include <utility>
 
 #include "geolens/core/errors.h"
@@ -16,8 +17,23 @@ struct LensSession::State {
   LensModel model = LensModel::kFocus;
 };
 
+namespace {
+
+// The options of a session's drafts: its grid, if it has its own.
+std::optional<LensOptions> draft_options(const LensOptions& options) {
+  if (options.draft_mesh == 0 || options.draft_mesh == options.mesh) return std::nullopt;
+  LensOptions o = options;
+  o.mesh = options.draft_mesh;
+  return o;
+}
+
+}  // namespace
+
 LensSession::LensSession(double width, double height, const LensOptions& options)
-    : lens_(width, height, options), state_(std::make_unique<State>()) {}
+    : lens_(width, height, options), state_(std::make_unique<State>()) {
+  if (const std::optional<LensOptions> o = draft_options(options))
+    draft_lens_.emplace(width, height, *o);
+}
 LensSession::~LensSession() = default;
 LensSession::LensSession(LensSession&&) noexcept = default;
 LensSession& LensSession::operator=(LensSession&&) noexcept = default;
@@ -28,13 +44,14 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
                                bool draft) {
   State& s = *state_;
   SolveCache& cache = s.caches[draft ? 1 : 0];
+  const GeometricLens& solver = draft && draft_lens_ ? *draft_lens_ : lens_;
   std::vector<double> fits;
   Grid grid;
   Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = lens_.fitted(asked, fits, grid, box, &cache, draft);
+  const std::vector<Lens> lenses = solver.fitted(asked, fits, grid, box, &cache, draft);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
-  const LensModel model = lens_.model_for(lenses);
+  const LensModel model = solver.model_for(lenses);
   std::vector<double> h;
   for (size_t k = 0; k < lenses.size(); ++k) {
     const Lens& lens = lenses[k];
@@ -51,7 +68,7 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
   if (s.change.rows() == before.rows()) cache.predicted = before + s.change;
   LensResult r;
   try {
-    r = lens_.calibrated(lenses, grid, box, h, cache, control);
+    r = solver.calibrated(lenses, grid, box, h, cache, control);
   } catch (const Cancelled&) {
     // The cache holds a consistent flattener and the last finished flattening, but no steady
     // motion to predict from.
@@ -60,7 +77,8 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
     throw;
   }
   r.zoom_fits = std::move(fits);
-  r.draft = draft && r.model == LensModel::kFocus && lens_.options().mesh_tolerance > 0;
+  r.draft = draft &&
+            (draft_lens_ || (r.model == LensModel::kFocus && solver.options().mesh_tolerance > 0));
   s.lenses = lenses;
   s.heights = r.heights;
   s.model = r.model;

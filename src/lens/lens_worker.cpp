@@ -30,8 +30,9 @@ LensJob session_job(std::shared_ptr<LensSession> session, bool draft) {
 
 }  // namespace
 
-LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress)
-    : progress_(std::move(progress)) {
+LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress,
+                       std::chrono::milliseconds settle)
+    : settle_(settle), progress_(std::move(progress)) {
   auto shared = std::make_shared<LensSession>(std::move(session));
   job_ = session_job(shared, false);
   draft_ = session_job(shared, true);
@@ -71,6 +72,7 @@ void LensWorker::cancel() {
   waiting_request_ = 0;
   if (busy_) cancel_ = true;
   idle_.notify_all();
+  wake_.notify_all();  // a draft waiting to settle
 }
 
 LensFrame LensWorker::latest() const {
@@ -130,14 +132,16 @@ void LensWorker::run() {
       busy_ = true;
       cancel_ = false;
     }
-    // A draft first where there is one; then, unless another request came meanwhile, the same
-    // lenses in full.
+    // A draft first where there is one; then, unless another request comes within settle_, the
+    // same lenses in full.
     bool refine = bool(draft_);
     const LensJob* job = refine ? &draft_ : &job_;
     for (;;) {
       const bool draft = publish(request, *job, lenses);
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (!refine || !draft || stop_ || waiting_request_ != 0) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (refine && draft)
+        wake_.wait_for(lock, settle_, [this] { return stop_ || cancel_ || waiting_request_ != 0; });
+      if (!refine || !draft || stop_ || cancel_ || waiting_request_ != 0) {
         busy_ = refining_ = false;
         break;
       }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -244,6 +245,31 @@ TEST(LensSession, ADraftIsTheFullFrameOnAnUnrefinedMesh) {
   EXPECT_LT(screen_gap(draft, session.update(lenses, {}, true)), 1e-9);
 }
 
+// LensOptions::draft_mesh: drafts on their own, coarser grid (about a quarter of the triangles
+// at half the vertices), as sound as a full frame; the full frames are those of a session
+// without it.
+TEST(LensSession, DraftsOnTheirOwnGrid) {
+  LensOptions options;
+  options.draft_mesh = 50;
+  LensSession session(1024, 1024, options);
+  LensSession plain(1024, 1024);
+  const std::vector<Lens> lenses = {focus_circle(500, 480)};
+  const LensResult draft = session.update(lenses, {}, true);
+  const LensResult plain_draft = plain.update(lenses, {}, true);
+  EXPECT_TRUE(draft.draft);
+  EXPECT_LT(draft.mesh.F.rows(), plain_draft.mesh.F.rows() / 3);
+  const TriangleDistortion measures = measure_triangles(draft.warp);
+  EXPECT_EQ(summarize(measures).flipped, 0);
+  const FocusMeasure focus = measure_foci(draft.warp, measures, lenses).front();
+  EXPECT_NEAR(focus.zoom, 2, 0.01);
+  EXPECT_LT(focus.uniformity, 1.01);
+  const LensResult full = session.update(lenses);
+  EXPECT_FALSE(full.draft);
+  EXPECT_LT(screen_gap(full, plain.update(lenses)), 1e-9);
+  options.draft_mesh = 3;
+  EXPECT_THROW(LensSession(1024, 1024, options), InvalidInput);
+}
+
 // A lens moved clear of the image border is solved on its last mesh, moved with it: the same
 // triangles, every vertex shifted by the move; and the picture is a fresh solve's, on its own
 // mesh, within a tenth of a pixel (0.055 px measured; the 4x-finer criterion is 0.5 px).
@@ -294,6 +320,41 @@ TEST(LensWorker, ShowsTheFullFrameOnceTheRequestsStop) {
   EXPECT_FALSE(frame.result->draft);
   const LensResult fresh = GeometricLens(1024, 1024).solve({focus_star({496, 500})});
   EXPECT_LT(picture_gap(*frame.result, fresh, 1024, 1024), 1e-6);
+}
+
+// A draft waits `settle` for the next request before its full frame is solved: a request
+// within it is drafted without the full frame of the one before, and cancel() while a draft
+// settles keeps the draft (a settle of a minute, so neither depends on the machine's speed).
+TEST(LensWorker, ADraftSettlesBeforeItsFullFrame) {
+  LensWorker worker{LensSession(1024, 1024), nullptr, std::chrono::minutes(1)};
+  auto shown = [&](std::uint64_t request) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    LensFrame frame = worker.latest();
+    for (; frame.request != request && std::chrono::steady_clock::now() < deadline;
+         frame = worker.latest())
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    EXPECT_EQ(frame.request, request);
+    return frame;
+  };
+  worker.submit({focus_star({440, 500})});
+  const LensFrame first = shown(1);
+  ASSERT_NE(first.result, nullptr);
+  EXPECT_TRUE(first.result->draft);
+  worker.submit({focus_star({450, 500})});
+  const LensFrame second = shown(2);  // not the full frame of request 1 first
+  ASSERT_NE(second.result, nullptr);
+  EXPECT_TRUE(second.result->draft);
+  // Without the settle the full frame would be shown by now (about 40 ms).
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_TRUE(worker.latest().result->draft);
+  const auto start = std::chrono::steady_clock::now();
+  worker.cancel();
+  worker.wait_idle();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  const LensFrame frame = worker.latest();
+  EXPECT_EQ(frame.request, 2u);
+  ASSERT_NE(frame.result, nullptr);
+  EXPECT_TRUE(frame.result->draft);
 }
 
 // cancel() stops the solve under way: its request is dropped and the frame before stays.

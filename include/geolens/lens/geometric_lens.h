@@ -61,6 +61,9 @@ struct LensOptions {
   /// triangle by more than this, output pixels, or than 1/400 of the smallest region's reach
   /// (>= 0; 0: not refined). A draft (LensSession) is not refined.
   double mesh_tolerance = 0.2;
+  /// LensSession's drafts (a drag's frames) on a grid of this many vertices along the long side
+  /// instead of `mesh` (0: `mesh`; else in [4, 1000]).
+  int draft_mesh = 0;
   Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
   double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
   LensModel model = LensModel::kFocus;

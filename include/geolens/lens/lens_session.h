@@ -3,6 +3,7 @@
 // every frame.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "geolens/core/solve_control.h"
@@ -31,9 +32,10 @@ class LensSession {
   /// SolverError if a system cannot be solved, Cancelled if `control` stops it (the next update
   /// starts from the last finished frame).
   ///
-  /// A draft (focus model) is solved on a mesh that follows the regions and footprints but is
-  /// not refined where the ring bends (LensOptions::mesh_tolerance): a drag's frames, about
-  /// as fast as the grid alone; its result says `draft`. Drafts and full frames keep what they
+  /// A draft is solved on the grid of LensOptions::draft_mesh, and (focus model) on a mesh that
+  /// follows the regions and footprints but is not refined where the ring bends
+  /// (LensOptions::mesh_tolerance): a drag's frames, about as fast as the grid alone; its
+  /// result says `draft` where it differs from a full frame. Drafts and full frames keep what they
   /// leave for the next apart, so a full frame between two drafts costs neither its speed.
   LensResult update(const std::vector<Lens>& lenses, const SolveControl& control = {},
                     bool draft = false);
@@ -46,6 +48,7 @@ class LensSession {
  private:
   struct State;
   GeometricLens lens_;
+  std::optional<GeometricLens> draft_lens_;  // on LensOptions::draft_mesh where that differs
   std::unique_ptr<State> state_;
 };
 

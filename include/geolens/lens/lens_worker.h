@@ -2,6 +2,7 @@
 // A LensSession on its own thread, for a UI loop that must not wait for a solve.
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -43,13 +44,19 @@ struct LensFrame {
 /// is thread-safe.
 class LensWorker {
  public:
+  /// How long a draft stays before its full frame is solved: a pointer's moves come every
+  /// frame while it drags (16 - 40 ms apart), so this is a pause, not a drag.
+  static constexpr std::chrono::milliseconds kSettle{50};
+
   /// The geometric lens, frame after frame (its results are LensResults): each request is
-  /// solved as a draft first (LensSession::update), then, unless another request came
-  /// meanwhile, in full (a request submitted during that full solve stops it). So a drag shows
-  /// drafts at a draft's pace and the lens at rest its full frame. `progress` (optional) is
+  /// solved as a draft first (LensSession::update), then, once no other request has come for
+  /// `settle`, in full (a request submitted during that full solve stops it). So a drag shows
+  /// drafts at a draft's pace, none of its time spent on full frames it would drop, and the
+  /// lens at rest its full frame. `progress` (optional) is
   /// called on the worker thread during each solve.
   explicit LensWorker(LensSession session,
-                      std::function<void(const SolveProgress&)> progress = nullptr);
+                      std::function<void(const SolveProgress&)> progress = nullptr,
+                      std::chrono::milliseconds settle = kSettle);
   /// Any job, e.g. method_job(a ClassicMethod).
   explicit LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress = nullptr);
   /// Stops the solve under way and joins the thread.
@@ -75,6 +82,7 @@ class LensWorker {
 
   LensJob job_;
   LensJob draft_;  // a session's drafts (empty for another job)
+  std::chrono::milliseconds settle_ = kSettle;
   std::function<void(const SolveProgress&)> progress_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
