@@ -36,6 +36,8 @@ const Option kOptions[] = {
     {"mesh_tolerance", "float",
      [](LensOptions& o, const py::handle& v) { o.mesh_tolerance = v.cast<double>(); },
      [](const LensOptions& o) { return number(o.mesh_tolerance); }},
+    {"draft_mesh", "int", [](LensOptions& o, const py::handle& v) { o.draft_mesh = v.cast<int>(); },
+     [](const LensOptions& o) { return number(o.draft_mesh); }},
     {"subdivide", "int",
      [](LensOptions& o, const py::handle& v) { o.subdivision.max_levels = v.cast<int>(); },
      [](const LensOptions& o) { return number(o.subdivision.max_levels); }},

@@ -154,6 +154,11 @@ def test_update_follows_a_moving_lens(flips):
         assert result.warp.forward(np.array([[x, 500.0]]))[0] == pytest.approx([x, 500], abs=0.5)
     draft = lens.update(geolens.circle(460, 500, 90, zoom=2), draft=True)
     assert draft.draft and draft.zoom_measured[0] == pytest.approx(2, rel=0.1)
+    coarse = geolens.GeometricLens(1024, 1024, draft_mesh=40)
+    coarse_draft = coarse.update(geolens.circle(460, 500, 90, zoom=2), draft=True)
+    assert coarse_draft.draft and flips(coarse_draft.warp) == 0
+    assert coarse_draft.zoom_measured[0] == pytest.approx(2, rel=0.1)
+    assert coarse_draft.stats["triangles"] < draft.stats["triangles"] / 3
 
 
 def test_solves_in_threads_match_the_same_solves_in_turn():
