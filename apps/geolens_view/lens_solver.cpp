@@ -70,7 +70,17 @@ std::uint64_t LensSolver::submit(const std::vector<Lens>& lenses, bool drop_stal
   }
   const std::uint64_t worker_request = worker_->submit(lenses);
   pending_[worker_request] = Pending{request, lenses};
+  last_worker_request_ = worker_request;
   return request;
+}
+
+void LensSolver::wait_for_last(std::chrono::milliseconds timeout) {
+  std::uint64_t request;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    request = last_worker_request_;
+  }
+  if (request != 0) worker_->wait_for(request, timeout);
 }
 
 SolvedFrame LensSolver::latest() const {

@@ -64,6 +64,8 @@ class LensSolver {
   std::uint64_t submit(const std::vector<Lens>& lenses, bool drop_stale);
   SolvedFrame latest() const;  ///< the latest answer; cheap, for every frame
   void wait_idle();            ///< blocks until every request is answered
+  /// Blocks until the last request submitted is answered, at most `timeout`.
+  void wait_for_last(std::chrono::milliseconds timeout);
   const std::string& method() const { return method_; }
   const LensOptions& options() const { return options_; }
 
@@ -82,6 +84,7 @@ class LensSolver {
   mutable std::map<std::uint64_t, Pending> pending_;
   mutable SolvedFrame shown_;
   mutable std::uint64_t shown_worker_request_ = 0;  // the worker's request shown_ answers
+  std::uint64_t last_worker_request_ = 0;           // the worker's request submitted last
   std::uint64_t submitted_ = 0;
 };
 

@@ -568,6 +568,9 @@ bool Viewer::update() {
     requested_at_.emplace_back(submitted_request_, now);
     if (split_.solver) split_.solver->submit(lenses_, drop_stale_);
     dirty_ = drop_stale_ = false;
+    // A draft takes a millisecond or two: shown in this frame, not the next (a move took two
+    // frames to show under llvmpipe, 29 ms); a slower solve is shown when it is done.
+    solver_->wait_for_last(kShowWait);
   }
   if (split_.solver) {
     SolvedFrame f = split_.solver->latest();

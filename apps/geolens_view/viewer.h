@@ -53,6 +53,9 @@ void check_export_path(const std::string& path, const std::string& input_image);
 
 class Viewer {
  public:
+  /// How long a frame waits for the answer to the lenses it has just submitted.
+  static constexpr std::chrono::milliseconds kShowWait{4};
+
   /// `options` the geometric lens's; `method` one of method_names().
   Viewer(const LensOptions& options, const std::string& method);
 

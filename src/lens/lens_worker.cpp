@@ -80,6 +80,14 @@ LensFrame LensWorker::latest() const {
   return latest_;
 }
 
+bool LensWorker::wait_for(std::uint64_t request, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return idle_.wait_for(lock, timeout, [&] {
+    return latest_.request >= request || latest_.failed_request >= request ||
+           (!busy_ && waiting_request_ == 0);
+  });
+}
+
 void LensWorker::wait_idle() {
   std::unique_lock<std::mutex> lock(mutex_);
   idle_.wait(lock, [this] { return !busy_ && waiting_request_ == 0; });
@@ -115,6 +123,7 @@ bool LensWorker::publish(std::uint64_t request, const LensJob& job,
     latest_.failed_request = request;
     latest_.error = std::move(error);
   }
+  idle_.notify_all();  // wait_for
   return draft;
 }
 

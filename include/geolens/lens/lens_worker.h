@@ -73,6 +73,10 @@ class LensWorker {
   LensFrame latest() const;
   /// Blocks until no request is waiting or being solved.
   void wait_idle();
+  /// Blocks until request `request` (or a later one) is answered or has failed, at most
+  /// `timeout`; returns whether it was. A UI that waits a few milliseconds after submitting
+  /// shows a fast answer in the same frame.
+  bool wait_for(std::uint64_t request, std::chrono::milliseconds timeout);
 
  private:
   void run();
