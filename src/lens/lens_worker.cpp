@@ -82,10 +82,9 @@ LensFrame LensWorker::latest() const {
 
 bool LensWorker::wait_for(std::uint64_t request, std::chrono::milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
-  return idle_.wait_for(lock, timeout, [&] {
-    return latest_.request >= request || latest_.failed_request >= request ||
-           (!busy_ && waiting_request_ == 0);
-  });
+  auto answered = [&] { return latest_.request >= request || latest_.failed_request >= request; };
+  idle_.wait_for(lock, timeout, [&] { return answered() || (!busy_ && waiting_request_ == 0); });
+  return answered();
 }
 
 void LensWorker::wait_idle() {

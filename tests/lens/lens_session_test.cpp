@@ -357,6 +357,23 @@ TEST(LensWorker, ADraftSettlesBeforeItsFullFrame) {
   EXPECT_TRUE(frame.result->draft);
 }
 
+// wait_for: a caller that waits for its request after submitting sees it answered (a draft
+// first), and a cancelled request is not waited for.
+TEST(LensWorker, WaitForReturnsOnceTheRequestIsAnswered) {
+  LensWorker worker{LensSession(1024, 1024)};
+  const std::uint64_t request = worker.submit({focus_circle(500, 480)});
+  EXPECT_TRUE(worker.wait_for(request, std::chrono::minutes(1)));
+  EXPECT_EQ(worker.latest().request, request);
+  ASSERT_NE(worker.latest().result, nullptr);
+  worker.wait_idle();
+  const std::uint64_t dropped = worker.submit({focus_circle(520, 480)});
+  worker.cancel();
+  const auto start = std::chrono::steady_clock::now();
+  worker.wait_for(dropped, std::chrono::minutes(1));
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  EXPECT_FALSE(worker.wait_for(dropped + 1, std::chrono::milliseconds(0)));
+}
+
 // cancel() stops the solve under way: its request is dropped and the frame before stays.
 TEST(LensWorker, CancelDropsTheSolveUnderWay) {
   LensOptions options = test::auto_model();

@@ -74,8 +74,8 @@ class LensWorker {
   /// Blocks until no request is waiting or being solved.
   void wait_idle();
   /// Blocks until request `request` (or a later one) is answered or has failed, at most
-  /// `timeout`; returns whether it was. A UI that waits a few milliseconds after submitting
-  /// shows a fast answer in the same frame.
+  /// `timeout` (less if the worker goes idle without it: cancelled); returns whether it was. A UI
+  /// that waits a few milliseconds after submitting shows a fast answer in the same frame.
   bool wait_for(std::uint64_t request, std::chrono::milliseconds timeout);
 
  private:
