@@ -38,6 +38,7 @@ std::optional<Region> transformed(const Region& region, const Eigen::Vector2d& d
   if (const std::optional<Circle> c = region.circle())
     return Region::circle(c->center + delta, c->radius * factor);
   if (region.kind() != "polygon") return std::nullopt;
+  if (factor == 1) return region.translated(delta);  // a drag: its rasters kept, not made again
   const Eigen::Vector2d peak = region.peak();
   std::vector<Eigen::Vector2d> vertices = region.anchors();
   for (Eigen::Vector2d& v : vertices) v = peak + delta + (v - peak) * factor;

@@ -316,3 +316,48 @@ TEST(MaskRegion, RejectsAnEmptyOrMalformedMask) {
 
 }  // namespace
 }  // namespace geolens
+
+namespace geolens {
+namespace {
+
+// A region moved is the region it was, read where it was: the same fields at p - offset, its
+// outline, anchors, bounds and peak moved, its exact distance that of the polygon built where it
+// now is; moved twice, it is moved once by the sum (not a region of a region); a circle stays a
+// circle.
+TEST(TranslatedRegion, IsTheRegionReadWhereItWas) {
+  const std::vector<Eigen::Vector2d> l = {{100, 100}, {220, 100}, {220, 160},
+                                          {160, 160}, {160, 260}, {100, 260}};
+  const Region region = Region::polygon(l);
+  const Eigen::Vector2d offset(37.25, -12.5);
+  const Region moved = region.translated(Eigen::Vector2d(30, -10)).translated({7.25, -2.5});
+  std::vector<Eigen::Vector2d> shifted = l;
+  for (Eigen::Vector2d& v : shifted) v += offset;
+  const Region rebuilt = Region::polygon(shifted);
+  EXPECT_EQ(moved.kind(), "polygon");
+  ASSERT_TRUE(moved.outline().has_value());
+  for (size_t k = 0; k < l.size(); ++k) {
+    EXPECT_LT(((*moved.outline())[k] - shifted[k]).norm(), 1e-12);
+    EXPECT_LT((moved.anchors()[k] - shifted[k]).norm(), 1e-12);
+  }
+  EXPECT_LT((moved.peak() - (region.peak() + offset)).norm(), 1e-12);
+  EXPECT_LT((moved.bounds().min() - rebuilt.bounds().min()).norm(), 1e-12);
+  EXPECT_LT((moved.bounds().max() - rebuilt.bounds().max()).norm(), 1e-12);
+  EXPECT_EQ(moved.size(), region.size());
+  EXPECT_EQ(moved.reach(), region.reach());
+  for (double x = 80; x < 300; x += 13.7) {
+    for (double y = 60; y < 300; y += 11.3) {
+      const Eigen::Vector2d p(x, y);
+      EXPECT_EQ(moved.depth(p), region.depth(p - offset));
+      EXPECT_EQ(moved.thickness(p), region.thickness(p - offset));
+      EXPECT_NEAR(moved.distance(p), rebuilt.distance(p), 1e-9);
+    }
+  }
+  const Region circle = Region::circle({50, 60}, 20).translated(offset);
+  ASSERT_TRUE(circle.circle().has_value());
+  EXPECT_LT((circle.circle()->center - Eigen::Vector2d(87.25, 47.5)).norm(), 1e-12);
+  EXPECT_EQ(circle.circle()->radius, 20);
+  EXPECT_THROW(region.translated({std::nan(""), 0}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace geolens

@@ -100,6 +100,11 @@ class Region {
   /// RegionShape::anchors: a circle's centre, a polygon's vertices, nothing for a mask blob.
   std::vector<Eigen::Vector2d> anchors() const;
 
+  /// The region moved by `offset` (pixels), its fields shared with this one rather than made
+  /// again (a polygon's rasters: a region dragged is moved, not rebuilt, every frame). Throws
+  /// InvalidInput for a non-finite offset.
+  Region translated(const Eigen::Vector2d& offset) const;
+
  private:
   std::shared_ptr<const RegionShape> shape_;  // immutable, so copies share it
 };
