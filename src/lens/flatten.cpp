@@ -112,6 +112,7 @@ Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
 }
 
 void Flattener::factorize() const {
+  update_laplacian();
   if (!solver_x_) {
     // Both or neither: a y system that fails after x was built must not leave x alone, which
     // later solves would take for both coordinates.
@@ -240,7 +241,18 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
       }
     }
   });
+  laplacian_stale_ = true;  // L_ follows when a factorization needs it
+}
 
+const Eigen::SparseMatrix<double>& Flattener::laplacian() const {
+  update_laplacian();
+  return L_;
+}
+
+void Flattener::update_laplacian() const {
+  if (!laplacian_stale_) return;
+  laplacian_stale_ = false;
+  const Eigen::Index n = rest_.rows();
   // L = sum over triangles and their edges (i, j) of w (e_i - e_j)(e_i - e_j)^T, entries in a
   // fixed order (so the sums, too, are the same from one assembly to the next): the pattern is
   // built once, later assemblies add the values into place.

@@ -173,7 +173,7 @@ class Flattener {
   double energy(const Eigen::MatrixX2d& X) const;
 
   /// The global matrix L (#V x #V), before the boundary conditions.
-  const Eigen::SparseMatrix<double>& laplacian() const { return L_; }
+  const Eigen::SparseMatrix<double>& laplacian() const;
 
  private:
   struct Triangle {
@@ -188,6 +188,9 @@ class Flattener {
   };
   void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
                 const Eigen::VectorXd& log_scale, const FocusConstraints& focus);
+  // L_ from the triangles' weights, if assemble() changed them since (the first time, its
+  // pattern too): only a factorization needs it.
+  void update_laplacian() const;
   Eigen::Matrix2d target(const Eigen::Matrix2d& J) const;
   Eigen::Matrix2d target(const Triangle& t, const Eigen::Matrix2d& J) const;
   // Whether every fixed coordinate of X (#V x 2) has its value in `values` (#V x 2).
@@ -201,8 +204,9 @@ class Flattener {
   Eigen::MatrixX2d rest_;  // the grid's 2D positions: the values of fixed coordinates
   FlattenOptions options_;
   std::vector<Triangle> triangles_;
-  Eigen::SparseMatrix<double> L_;
-  std::vector<int> entry_position_;  // value index in L_ of each assembled entry
+  mutable Eigen::SparseMatrix<double> L_;
+  mutable std::vector<int> entry_position_;  // value index in L_ of each assembled entry
+  mutable bool laplacian_stale_ = true;      // L_ lags the triangles' weights
   // The corners (3 f + k) at each vertex v: corner_[corner_start_[v] .. corner_start_[v + 1]).
   std::vector<int> corner_start_, corner_;
   std::vector<char> fix_x_, fix_y_;  // #V: the coordinate keeps its fixed value
