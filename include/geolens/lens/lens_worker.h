@@ -52,8 +52,8 @@ class LensWorker {
   /// solved as a draft first (LensSession::update), then, once no other request has come for
   /// `settle`, in full (a request submitted during that full solve stops it). So a drag shows
   /// drafts at a draft's pace, none of its time spent on full frames it would drop, and the
-  /// lens at rest its full frame. `progress` (optional) is
-  /// called on the worker thread during each solve.
+  /// lens at rest its full frame. `progress` (optional) is called on the worker thread during
+  /// each solve.
   explicit LensWorker(LensSession session,
                       std::function<void(const SolveProgress&)> progress = nullptr,
                       std::chrono::milliseconds settle = kSettle);
