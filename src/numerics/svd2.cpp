@@ -4,28 +4,43 @@
 
 namespace geolens {
 
+namespace {
+
 // With E = (a + d) / 2, F = (a - d) / 2, G = (c + b) / 2, H = (c - b) / 2 for J = [a b; c d],
 // J = Rot(phi) diag(Q + R, Q - R) Rot(theta) where Q = |(E, H)|, R = |(F, G)|,
 // phi = (atan2(H, E) + atan2(G, F)) / 2, theta = (atan2(H, E) - atan2(G, F)) / 2
 // (J. Blinn, "Consider the lowly 2x2 matrix", IEEE CG&A 1996).
+struct Parts {
+  double E, F, G, H, Q, R;
+};
+
+Parts parts(const Eigen::Matrix2d& J) {
+  Parts p;
+  p.E = 0.5 * (J(0, 0) + J(1, 1));
+  p.F = 0.5 * (J(0, 0) - J(1, 1));
+  p.G = 0.5 * (J(1, 0) + J(0, 1));
+  p.H = 0.5 * (J(1, 0) - J(0, 1));
+  p.Q = std::hypot(p.E, p.H);
+  p.R = std::hypot(p.F, p.G);
+  return p;
+}
+
+}  // namespace
+
 SignedSvd2 signed_svd(const Eigen::Matrix2d& J) {
-  const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
-  const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
-  const double Q = std::hypot(E, H), R = std::hypot(F, G);
-  const double a1 = std::atan2(G, F), a2 = std::atan2(H, E);
+  const Parts p = parts(J);
+  const double a1 = std::atan2(p.G, p.F), a2 = std::atan2(p.H, p.E);
   SignedSvd2 s;
-  s.s1 = Q + R;
-  s.s2 = Q - R;
+  s.s1 = p.Q + p.R;
+  s.s2 = p.Q - p.R;
   s.phi = 0.5 * (a2 + a1);
   s.theta = 0.5 * (a2 - a1);
   return s;
 }
 
 Eigen::Vector2d signed_singular_values(const Eigen::Matrix2d& J) {
-  const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
-  const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
-  const double Q = std::hypot(E, H), R = std::hypot(F, G);
-  return Eigen::Vector2d(Q + R, Q - R);
+  const Parts p = parts(J);
+  return Eigen::Vector2d(p.Q + p.R, p.Q - p.R);
 }
 
 // Rot(phi) diag(x, y) Rot(theta) = (x + y) / 2 Rot(phi + theta) + (x - y) / 2 Rot(phi) diag(1, -1)
@@ -33,13 +48,11 @@ Eigen::Vector2d signed_singular_values(const Eigen::Matrix2d& J) {
 // reflection of angle phi - theta = atan2(G, F): [F G; G -F] / R; the first term's rotation is
 // [E -H; H E] / Q (atan2(0, 0) = 0 where Q or R is 0, as in signed_svd).
 Eigen::Matrix2d with_singular_values(const Eigen::Matrix2d& J, double x, double y) {
-  const double E = 0.5 * (J(0, 0) + J(1, 1)), F = 0.5 * (J(0, 0) - J(1, 1));
-  const double G = 0.5 * (J(1, 0) + J(0, 1)), H = 0.5 * (J(1, 0) - J(0, 1));
-  const double Q = std::hypot(E, H), R = std::hypot(F, G);
+  const Parts p = parts(J);
   Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity(), reflection;
-  if (Q > 0) rotation << E / Q, -H / Q, H / Q, E / Q;
-  if (R > 0) {
-    reflection << F / R, G / R, G / R, -F / R;
+  if (p.Q > 0) rotation << p.E / p.Q, -p.H / p.Q, p.H / p.Q, p.E / p.Q;
+  if (p.R > 0) {
+    reflection << p.F / p.R, p.G / p.R, p.G / p.R, -p.F / p.R;
   } else {
     reflection << 1, 0, 0, -1;
   }
