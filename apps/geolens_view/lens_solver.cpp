@@ -70,7 +70,6 @@ std::uint64_t LensSolver::submit(const std::vector<Lens>& lenses, bool drop_stal
   }
   const std::uint64_t worker_request = worker_->submit(lenses);
   pending_[worker_request] = Pending{request, lenses};
-  last_worker_request_ = worker_request;
   return request;
 }
 
@@ -78,9 +77,10 @@ void LensSolver::wait_for_last(std::chrono::milliseconds timeout) {
   std::uint64_t request;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    request = last_worker_request_;
+    if (pending_.empty()) return;  // answered, dropped, or the identity
+    request = pending_.rbegin()->first;
   }
-  if (request != 0) worker_->wait_for(request, timeout);
+  worker_->wait_for(request, timeout);
 }
 
 SolvedFrame LensSolver::latest() const {

@@ -84,7 +84,6 @@ class LensSolver {
   mutable std::map<std::uint64_t, Pending> pending_;
   mutable SolvedFrame shown_;
   mutable std::uint64_t shown_worker_request_ = 0;  // the worker's request shown_ answers
-  std::uint64_t last_worker_request_ = 0;           // the worker's request submitted last
   std::uint64_t submitted_ = 0;
 };
 

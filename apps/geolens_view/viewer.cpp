@@ -72,7 +72,6 @@ void Viewer::open(Image image, const std::string& path) {
   ++image_generation_;
   // A source with detail is set again by show_source.
   detail_worker_.reset();
-  file_.reset();
   detail_asked_.reset();
   detail_.reset();
   // Keep the lenses that still fit.
@@ -168,10 +167,7 @@ void Viewer::show_source(OpenedSource opened, std::optional<std::pair<double, do
   orbits_ = orbits;
   azimuth_ = camera ? camera->first : 0;
   elevation_ = camera ? camera->second : 0;
-  if (opened.detail) {
-    file_ = std::move(opened.detail);
-    detail_worker_ = std::make_unique<DetailWorker>(file_);
-  }
+  if (opened.detail) detail_worker_ = std::make_unique<DetailWorker>(std::move(opened.detail));
 }
 
 void Viewer::add_lenses(const std::string& spec) {

@@ -247,8 +247,7 @@ class Viewer {
 
   Image image_;
   std::string image_path_;
-  // The source file shown and its detail renders, when it has detail (has_detail).
-  std::shared_ptr<const SourceFile> file_;
+  // The detail renders of the source file shown, when it has detail (has_detail).
   std::unique_ptr<DetailWorker> detail_worker_;
   std::optional<DetailView> detail_asked_;       // the view of the latest detail request
   std::shared_ptr<const DetailPicture> detail_;  // the worker's latest picture

@@ -144,12 +144,12 @@ void LensWorker::run() {
     // same lenses in full.
     bool refine = bool(draft_);
     const LensJob* job = refine ? &draft_ : &job_;
+    const auto interrupted = [this] { return stop_ || cancel_ || waiting_request_ != 0; };
     for (;;) {
       const bool draft = publish(request, *job, lenses);
       std::unique_lock<std::mutex> lock(mutex_);
-      if (refine && draft)
-        wake_.wait_for(lock, settle_, [this] { return stop_ || cancel_ || waiting_request_ != 0; });
-      if (!refine || !draft || stop_ || cancel_ || waiting_request_ != 0) {
+      if (refine && draft) wake_.wait_for(lock, settle_, interrupted);
+      if (!refine || !draft || interrupted()) {
         busy_ = refining_ = false;
         break;
       }
