@@ -12,6 +12,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/thread_pool.h"
 #include "geolens/eval/focus_measure.h"
 #include "geolens/eval/footprint_sweep.h"
 #include "geolens/geometry/grid.h"
@@ -232,6 +233,31 @@ TEST(FocusLens, FootprintMustExceedTheZoom) {
 }
 
 // The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
+// The ring's contours are offset curves of the focus, rounded where a reflex corner's two edges
+// are equally near (a crease there would show along the whole bisector): across the bisector of
+// the L's reflex corner, 60 px out, the start's slope changes in proportion to the step it is
+// measured over (its second difference: C1), where a crease kept a jump of 0.77.
+TEST(FocusLens, StartHasNoCreaseAlongAReflexCornersBisector) {
+  const Eigen::Vector2d middle(512, 512);
+  const std::vector<Lens> lenses = {Lens{Region::polygon(translated(kL, middle)), 2}};
+  const double cell = 1024.0 / 99;
+  ThreadPool pool(1);
+  const auto map =
+      focus_map(lenses, focus_groups(lenses), cell, focus_band(lenses, cell), 1024, 1024, pool);
+  const Eigen::Vector2d corner = middle + Eigen::Vector2d(-40, 40);
+  const Eigen::Vector2d out = Eigen::Vector2d(1, -1).normalized(), across(out.y(), -out.x());
+  auto slope_jump = [&](double h) {
+    Eigen::MatrixX2d q(3, 2);
+    for (int k = 0; k < 3; ++k) q.row(k) = (corner + 60 * out + (k - 1) * h * across).transpose();
+    const Eigen::MatrixX2d m = map(q);
+    EXPECT_GT((m.row(1) - q.row(1)).norm(), 1.0);  // in the ring: moved
+    return ((m.row(2) - m.row(1)) / h - (m.row(1) - m.row(0)) / h).norm();
+  };
+  const double coarse = slope_jump(0.01), fine = slope_jump(0.001);
+  EXPECT_LT(coarse, 0.01);
+  EXPECT_LT(fine, 0.2 * coarse) << coarse << " / " << fine;
+}
+
 TEST(FocusLens, UpdateFollowsADraggedLens) {
   LensSession geometric(1024, 1024);
   for (int step = 0; step < 6; ++step) {

@@ -68,7 +68,7 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
 
 /// Whether the image border (width x height, pixels) is too far from `group`'s footprint to round
-/// its edge anywhere: 1.25 times the group's disk (radius reach + margin) from its centre or more.
+/// its edge anywhere: 1.3 times the group's disk (radius reach + margin) from its centre or more.
 /// Such a group's footprint, and the mesh that follows it, are the same wherever it is.
 bool footprint_clear_of_border(const FocusGroup& group, double width, double height);
 
