@@ -567,7 +567,7 @@ MeshCurve polygon_curve(const std::vector<Eigen::Vector2d>& vertices) {
 }
 
 PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& curves, double snap,
-                        const MeshRefinement& refine) {
+                        const MeshRefinement& refine, std::vector<int>* on_curve) {
   require(std::isfinite(snap) && snap >= 0, "conform_mesh",
           "snap distance must be finite and >= 0, got " + std::to_string(snap));
   require(!refine.map ||
@@ -612,6 +612,7 @@ PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& cu
   for (size_t f = 0; f < w.F.size(); ++f)
     out.F.row(Eigen::Index(f)) << w.F[f][0], w.F[f][1], w.F[f][2];
   out.sides = std::move(w.sides);
+  if (on_curve) *on_curve = std::move(w.curve_of);
   return out;
 }
 

@@ -340,6 +340,25 @@ struct Ring {
     p.s = std::max(p.t, p.inner + std::max(d - near, 0.0));
     return p;
   }
+
+  // The footprint's edge is where s reaches edge along a ray: level = s - edge, negative inside,
+  // grows along every ray, pixels (about the distance along the ray near the edge).
+  double level(const Eigen::Vector2d& q) const {
+    // The centre is in the focus (on an image corner, the ray of a point there, along rounding,
+    // may leave the image at once).
+    if ((q - centre).norm() <= 1e-9 * disk_radius) return -inner(Eigen::Vector2d(1, 0));
+    const Place p = place(q);
+    return p.s - p.edge;
+  }
+
+  // The point of the footprint's edge on q's ray (q not the centre), by a root of the level.
+  Eigen::Vector2d onto_edge(const Eigen::Vector2d& q) const {
+    const Eigen::Vector2d u = (q - centre).normalized();
+    double hi = (q - centre).norm();  // level(0) < 0 <= level(hi), widened
+    while (level(centre + hi * u) < 0) hi *= 2;
+    auto along = [&](double t) { return level(centre + t * u); };
+    return centre + bracketed_root(along, 0.0, hi, 1e-9) * u;
+  }
 };
 
 // The fractions of a log zoom tried, in order, when a ring folds the mesh or its start is not
@@ -576,6 +595,86 @@ std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
   };
 }
 
+std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
+                                                 const std::vector<int>& on_curve,
+                                                 const std::vector<Lens>& from,
+                                                 const Eigen::AlignedBox2d& from_box,
+                                                 double from_cell, const std::vector<Lens>& to,
+                                                 const Eigen::AlignedBox2d& to_box, double to_cell,
+                                                 double width, double height, ThreadPool& pool) {
+  require(from.size() == to.size() && !from.empty() && on_curve.size() == size_t(mesh.V.rows()),
+          "moved_focus_mesh", "the same lenses, and a curve index per vertex, expected");
+  const std::vector<FocusGroup> was = focus_groups(from), now = focus_groups(to);
+  require(was.size() == now.size(), "moved_focus_mesh", "the lenses must keep their groups");
+  std::vector<Ring> rings_was, rings_now;
+  for (size_t g = 0; g < was.size(); ++g) {
+    rings_was.emplace_back(was[g], from, from_cell, focus_band(from, from_cell), width, height);
+    rings_now.emplace_back(now[g], to, to_cell, focus_band(to, to_cell), width, height);
+  }
+  const Eigen::Vector2d shift = to[0].region.peak() - from[0].region.peak();
+  const Eigen::Array2d stretch = to_box.sizes().array() / from_box.sizes().array();
+  const double near = 2 * to_cell;
+  // focus_curves lists every region's curve before the footprints' edges.
+  const int regions = int(from.size());
+  Eigen::MatrixX2d V(mesh.V.rows(), 2);
+  parallel_for(pool, size_t(V.rows()), [&](size_t begin, size_t end) {
+    for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
+      const Eigen::Vector2d p = mesh.V.row(i).transpose();
+      const Eigen::Vector2d boxed = to_box.min().array() + (p - from_box.min()).array() * stretch;
+      // The group whose footprint p is deepest in, or nearest outside of.
+      size_t g = was.size();
+      Ring::Place at;
+      double key = std::numeric_limits<double>::infinity();
+      for (size_t k = 0; k < was.size() && mesh.sides[size_t(i)] == 0; ++k) {
+        if (was[k].log_zoom <= 0) continue;  // nothing moves
+        const Ring::Place place = rings_was[k].place(p);
+        if ((place.s - place.edge) / place.edge < key) {
+          key = (place.s - place.edge) / place.edge;
+          g = k;
+          at = place;
+        }
+      }
+      if (g == was.size()) {
+        V.row(i) = boxed.transpose();
+        continue;
+      }
+      // Along its ray from the ring's centre p keeps its place between the focus and the
+      // footprint's edge (rho = (s - inner) / (edge - inner)), where the edge moved to:
+      // rigidly in a focus, with the edge at it, and so along the border where the edge is the
+      // border; beyond the edge it turns, within `near`, to the box's stretch.
+      const double level = at.s - at.edge;
+      const double rho = at.edge > at.inner ? (at.s - at.inner) / (at.edge - at.inner) : 0.0;
+      const double moved = rings_now[g].edge(at.u) - at.edge;
+      const Eigen::Vector2d ringed = p + shift + std::clamp(rho, 0.0, 1.0) * moved * at.u;
+      const double w = level <= 0 ? 1.0 : std::max(0.0, 1 - level / near);
+      Eigen::Vector2d q = w * ringed + (1 - w) * boxed;
+      if (on_curve[size_t(i)] >= regions) {
+        // Onto the moved edge, but not onto the image border where the edge runs along it (a
+        // triangle with a side there would vanish): at least a thousandth of a cell inside it.
+        const double margin = 1e-3 * to_cell;
+        q = rings_now[g]
+                .onto_edge(q)
+                .cwiseMax(Eigen::Vector2d::Constant(margin))
+                .cwiseMin(Eigen::Vector2d(width - margin, height - margin));
+      }
+      V.row(i) = q.transpose();
+    }
+  });
+  auto area2 = [&](const Eigen::MatrixX2d& X, Eigen::Index f) {
+    const Eigen::Vector2d a = X.row(mesh.F(f, 1)) - X.row(mesh.F(f, 0)),
+                          b = X.row(mesh.F(f, 2)) - X.row(mesh.F(f, 0));
+    return a.x() * b.y() - a.y() * b.x();
+  };
+  // (A sliver, below a hundredth of a cell's area, as the curves cut beside the border where a
+  // footprint's edge runs a hair inside it, may shrink further, but not fold or vanish.)
+  const double sliver = 1e-2 * to_cell * to_cell;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const double before = area2(mesh.V, f), now = area2(V, f);
+    if (!(now > 0 && (now > 0.2 * before || before < sliver))) return std::nullopt;
+  }
+  return V;
+}
+
 Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
                              double width, double height, ThreadPool& pool) {
@@ -647,25 +746,9 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
       curves.push_back(circle_curve(ring->centre, ring->disk_radius));
       continue;
     }
-    // The footprint's edge is where s reaches edge along a ray (Ring::Place); level = s - edge
-    // grows along every ray, so a point is projected onto it by a root on its ray.
-    auto level = [ring](const Eigen::Vector2d& p) {
-      // The centre is in the focus (on an image corner, the ray of a point there, along
-      // rounding, may leave the image at once).
-      if ((p - ring->centre).norm() <= 1e-9 * ring->disk_radius)
-        return -ring->inner(Eigen::Vector2d(1, 0));
-      const Ring::Place place = ring->place(p);
-      return place.s - place.edge;
-    };
     MeshCurve curve;
-    curve.level = level;
-    curve.project = [ring, level](const Eigen::Vector2d& p) {
-      const Eigen::Vector2d u = (p - ring->centre).normalized();
-      double hi = (p - ring->centre).norm();  // level(0) < 0 <= level(hi), widened
-      while (level(ring->centre + hi * u) < 0) hi *= 2;
-      auto along = [&](double t) { return level(ring->centre + t * u); };
-      return Eigen::Vector2d(ring->centre + bracketed_root(along, 0.0, hi, 1e-9) * u);
-    };
+    curve.level = [ring](const Eigen::Vector2d& p) { return ring->level(p); };
+    curve.project = [ring](const Eigen::Vector2d& p) { return ring->onto_edge(p); };
     const double r = group.reach + group.margin + (ring->centre - group.centre).norm();
     curve.bounds = Eigen::AlignedBox2d(ring->centre.array() - r, ring->centre.array() + r);
     curves.push_back(std::move(curve));

@@ -114,8 +114,8 @@ Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) c
 // the sides flags so the flattening pins it; for focus lenses on circles and polygons, made to
 // follow every region's boundary and footprint's edge and, unless a draft, refined where the
 // start bends.
-Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
-                              bool draft) const {
+Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
+                              std::vector<int>* on_curve) const {
   box = solved_box(lenses);
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width_, height_));
   if (box.isApprox(image) && model_for(lenses) != LensModel::kFocus) return grid_;
@@ -137,8 +137,11 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
       for (const Lens& lens : lenses)
         refine.tolerance = std::min(refine.tolerance, kRelativeTolerance * lens.region.reach());
     }
-    static_cast<PlanarMesh&>(patch) = conform_mesh(
-        patch, focus_curves(lenses, cell, band, width_, height_), 0.4 * patch.cell, refine);
+    static_cast<PlanarMesh&>(patch) =
+        conform_mesh(patch, focus_curves(lenses, cell, band, width_, height_), 0.4 * patch.cell,
+                     refine, on_curve);
+  } else if (on_curve) {
+    on_curve->assign(size_t(patch.V.rows()), -1);
   }
   return patch;
 }
@@ -180,6 +183,43 @@ bool moved_only(const std::vector<Lens>& from, const std::vector<Lens>& to) {
 
 }  // namespace
 
+// How far, in cells, lenses whose footprint the image border cuts may move before their mesh is
+// made anew (moved_grid).
+constexpr double kMovedMeshDrift = 2;
+
+// Whether every focus group's footprint is clear of the image border (footprint_clear_of_border).
+bool GeometricLens::clear_of_border(const std::vector<Lens>& lenses) const {
+  const std::vector<FocusGroup> groups = focus_groups(lenses);
+  return std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
+    return footprint_clear_of_border(g, width_, height_);
+  });
+}
+
+// The last frame's mesh (`memo`) for `lenses`, the memo's moved by one translation, over their
+// solved `box`; none where it must be made anew. Where every footprint is clear of the border,
+// now and where the mesh was made, the lenses' map is the memo's translated, and so is the mesh.
+// Else the border bends the map differently where the lenses now are: the mesh deforms with them
+// (moved_focus_mesh), and is made anew once they have drifted kMovedMeshDrift cells from where it
+// was made.
+std::optional<Grid> GeometricLens::moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
+                                              Eigen::AlignedBox2d& box) const {
+  box = solved_box(lenses);
+  Grid grid = memo.grid;
+  if (memo.clear && clear_of_border(lenses)) {
+    grid.V.rowwise() += (box.min() - memo.box.min()).transpose();
+    return grid;
+  }
+  const double cell = cell_size(box, options_.mesh);
+  const double shift = (lenses[0].region.peak() - memo.lenses[0].region.peak()).norm();
+  if (memo.drift + shift > kMovedMeshDrift * cell) return std::nullopt;
+  std::optional<Eigen::MatrixX2d> V = moved_focus_mesh(memo.grid, memo.on_curve, memo.lenses,
+                                                       memo.box, cell_size(memo.box, options_.mesh),
+                                                       lenses, box, cell, width_, height_, *pool_);
+  if (!V) return std::nullopt;
+  grid.V = std::move(*V);
+  return grid;
+}
+
 std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::vector<double>& fits,
                                         Grid& grid, Eigen::AlignedBox2d& box, SolveCache* cache,
                                         bool draft) const {
@@ -203,27 +243,25 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::ve
   };
   lower(fits);
   // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding;
-  // the last frame's mesh, moved, where the lenses only moved clear of the border.
+  // the last frame's mesh, moved, where the lenses only moved.
   MeshMemo* memo = cache ? &cache->mesh : nullptr;
-  const std::vector<FocusGroup> groups = focus_groups(out);
-  const bool clear = std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
-    return footprint_clear_of_border(g, width_, height_);
-  });
-  if (memo && clear && moved_only(memo->lenses, out)) {
-    box = solved_box(out);
-    grid = memo->grid;
-    grid.V.rowwise() += (box.min() - memo->box.min()).transpose();
-    memo->lenses = out;
-    memo->box = box;
-    memo->grid = grid;
-    lower(memo->unfolding);
-    return out;
+  if (memo && moved_only(memo->lenses, out)) {
+    if (std::optional<Grid> moved = moved_grid(*memo, out, box)) {
+      grid = std::move(*moved);
+      memo->drift += (out[0].region.peak() - memo->lenses[0].region.peak()).norm();
+      memo->lenses = out;
+      memo->box = box;
+      memo->grid = grid;
+      lower(memo->unfolding);
+      return out;
+    }
   }
-  grid = base_grid(out, box, draft);
+  std::vector<int> on_curve;
+  grid = base_grid(out, box, draft, &on_curve);
   const double out_cell = cell_size(box, options_.mesh);
   const std::vector<double> unfolding =
       unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_, *pool_);
-  if (memo) *memo = clear ? MeshMemo{out, box, grid, unfolding} : MeshMemo{};
+  if (memo) *memo = MeshMemo{out, box, grid, unfolding, std::move(on_curve), clear_of_border(out)};
   lower(unfolding);
   return out;
 }

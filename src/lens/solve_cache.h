@@ -15,12 +15,17 @@ namespace geolens {
 
 // The focus lens's mesh of one frame (its grid made to follow the regions and footprints and
 // refined where the start bends), kept for the next: a lens moved clear of the image border has
-// the same mesh, translated, so the next frame neither remeshes nor refactorizes.
+// the same mesh, translated, so the next frame neither remeshes nor refactorizes; one whose
+// footprint the border cuts, the same mesh deformed with it for a few cells
+// (GeometricLens::moved_grid).
 struct MeshMemo {
-  std::vector<Lens> lenses;       // as meshed (fitted)
+  std::vector<Lens> lenses;       // as meshed (fitted) or last moved to
   Eigen::AlignedBox2d box;        // the mesh's
   Grid grid;                      // the mesh
-  std::vector<double> unfolding;  // unfolding_zooms on it
+  std::vector<double> unfolding;  // unfolding_zooms on it when made
+  std::vector<int> on_curve;      // conform_mesh's: per vertex, the curve it lies on, or -1
+  bool clear = false;             // made with every footprint clear of the image border
+  double drift = 0;               // pixels the lenses moved since it was made
 };
 
 struct SolveCache {

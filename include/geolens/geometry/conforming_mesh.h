@@ -65,8 +65,10 @@ struct MeshRefinement {
 /// New vertices on an edge are shared by both its triangles. Vertices on a side of the mesh
 /// (sides != 0) and vertices placed on an earlier curve do not move; a vertex added on an edge
 /// keeps the side flags both its ends share. Curves closer than about a cell to each other or to
-/// a side give thin triangles but no crossing. O(#F) per curve and per polygon edge.
+/// a side give thin triangles but no crossing. O(#F) per curve and per polygon edge. With
+/// `on_curve`, it receives per vertex of the result the index of the curve the vertex was placed
+/// on (the first, where several meet), or -1.
 PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& curves, double snap,
-                        const MeshRefinement& refine = {});
+                        const MeshRefinement& refine = {}, std::vector<int>* on_curve = nullptr);
 
 }  // namespace geolens

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "geolens/geometry/conforming_mesh.h"
@@ -104,6 +105,22 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
     const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups, double cell,
     double band, double width, double height, ThreadPool& pool);
+
+/// The vertices of `mesh`, made for lenses `from` (over the box `from_box`, cell side
+/// `from_cell`, pixels) to follow focus_curves as conform_mesh's `on_curve` records, moved with
+/// the lenses to `to` (the same lenses moved by one translation; box `to_box`, cell `to_cell`),
+/// pixels: a vertex follows the lenses by its depth in its group's ring (1 in a focus, falling
+/// linearly in the ring's radius s to 0 at the footprint's edge) and the box's stretch by the
+/// rest, vertices on the box's sides stay on them, and a vertex within two cells of a footprint's
+/// edge moves along its ray as the edge moved there (one on the edge, onto it). None where a
+/// triangle would keep less than a fifth of its area. #V x 2.
+std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
+                                                 const std::vector<int>& on_curve,
+                                                 const std::vector<Lens>& from,
+                                                 const Eigen::AlignedBox2d& from_box,
+                                                 double from_cell, const std::vector<Lens>& to,
+                                                 const Eigen::AlignedBox2d& to_box, double to_cell,
+                                                 double width, double height, ThreadPool& pool);
 
 /// A fold-free first flattening for focus_field's constraints: each group's power-law ring,
 /// generalized to any region. About the group's centre c (or a point on the image side its

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,7 @@ struct LensResult : Magnification {
 };
 
 struct SolveCache;  // what one solve leaves for the next: lens/solve_cache.h (private)
+struct MeshMemo;    // the last mesh, in a SolveCache
 
 /// Magnifies lenses on a width x height image. Holds the grid and nothing that changes: solve()
 /// is independent of any earlier call and may run on several threads at once. The interactive
@@ -140,14 +142,16 @@ class GeometricLens {
  private:
   friend class LensSession;
   Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
-  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
-                 bool draft = false) const;
+  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft = false,
+                 std::vector<int>* on_curve = nullptr) const;
+  bool clear_of_border(const std::vector<Lens>& lenses) const;
+  std::optional<Grid> moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
+                                 Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
   // The lenses to solve (validated), and the grid (over `box`) to solve them on. kFocus: each
   // zoom lowered to the largest that fits (footprints kept), those zooms in `fits`; other
-  // models: the lenses as they are. With a cache, kFocus reuses its last mesh, translated, for
-  // lenses that only moved, clear of the image border, and keeps the mesh it makes. A draft's
-  // mesh is not refined.
+  // models: the lenses as they are. With a cache, kFocus reuses its last mesh for lenses that
+  // only moved (moved_grid) and keeps the mesh it makes. A draft's mesh is not refined.
   std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
                            Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
                            bool draft = false) const;
