@@ -273,16 +273,18 @@ struct Ring {
       }
     }
     // Its upper envelope of log-slope kSlope (per radian): no lower, and varying slowly enough
-    // from ray to ray that the ring does not shear the mesh's triangles until they fold.
+    // from ray to ray that the ring does not shear the mesh's triangles until they fold. That is
+    // max over j of found[j] decay^(bins between k and j, round the circle): the running maximum,
+    // decayed one bin a step, swept twice round each way (the kernel is exponential).
     constexpr double kSlope = 0.3;
-    std::vector<double> decay(kBins / 2 + 1);  // by the number of bins between two rays
-    for (size_t k = 0; k < decay.size(); ++k)
-      decay[k] = std::exp(-kSlope * 2 * std::numbers::pi * double(k) / kBins);
-    inner_.assign(kBins, 0.0);
-    for (int k = 0; k < kBins; ++k) {
-      for (int j = 0; j < kBins; ++j) {
-        const int steps = std::min(std::abs(k - j), kBins - std::abs(k - j));
-        inner_[size_t(k)] = std::max(inner_[size_t(k)], found[size_t(j)] * decay[size_t(steps)]);
+    const double decay = std::exp(-kSlope * 2 * std::numbers::pi / kBins);
+    inner_ = found;
+    for (const int direction : {1, -1}) {
+      double running = 0;
+      for (int step = 0; step < 2 * kBins; ++step) {
+        const size_t k = size_t(direction > 0 ? step % kBins : kBins - 1 - step % kBins);
+        running = std::max(running * decay, found[k]);
+        inner_[k] = std::max(inner_[k], running);
       }
     }
   }
@@ -339,6 +341,14 @@ struct Ring {
     for (const RingDistance& region : regions_) d = std::min(d, region(q));
     p.s = std::max(p.t, p.inner + std::max(d - near, 0.0));
     return p;
+  }
+
+  // Where the ring at `log_zoom` moves the point at `p` (in the footprint, not the centre):
+  // centre + g t u, ln g = log_zoom ln(edge / s) / ln(edge / inner). s >= t and ds/dt <= 1 along
+  // the ray keep g t increasing (no fold) while edge > zoom inner.
+  Eigen::Vector2d moved(const Place& p, double log_zoom) const {
+    const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
+    return centre + g * p.t * p.u;
   }
 
   // The footprint's edge is where s reaches edge along a ray: level = s - edge, negative inside,
@@ -483,6 +493,7 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   c.anisotropy = Eigen::VectorXd::Ones(n);
   out.log_scale = Eigen::VectorXd::Zero(n);
   out.level = Eigen::VectorXd::Zero(n);
+  out.start = V;
   parallel_for(pool, size_t(n), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
@@ -513,6 +524,9 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
         const double ratio = std::max(owner_place.edge / owner_place.inner, 1.0 + 1e-9);
         const double k_power = 1 - out.groups[owner].log_zoom / std::log(ratio);
         c.anisotropy(Eigen::Index(i)) = std::min(slack / std::max(k_power, 1e-9), 20.0);
+        if (out.groups[owner].log_zoom > 0 && owner_place.t > 0)
+          out.start.row(Eigen::Index(i)) =
+              rings[owner].moved(owner_place, out.groups[owner].log_zoom).transpose();
       }
       out.level(Eigen::Index(i)) = c.pinned[i] ? 0.0 : 1.0;
     }
@@ -528,10 +542,7 @@ void apply_ring(Eigen::MatrixX2d& X, const Ring& ring, double log_zoom, ThreadPo
   parallel_for(pool, size_t(X.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
       const Ring::Place p = ring.place(X.row(i).transpose());
-      // s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge > zoom inner.
-      if (p.t == 0 || !p.in_footprint()) continue;
-      const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
-      X.row(i) = (ring.centre + g * p.t * p.u).transpose();
+      if (p.t > 0 && p.in_footprint()) X.row(i) = ring.moved(p, log_zoom).transpose();
     }
   });
 }
@@ -702,15 +713,20 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
 }
 
 FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
-                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height, ThreadPool& pool,
+                            const std::vector<Lens>& lenses, const FocusField& field, double cell,
+                            double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control) {
   // The full start, else one at lower zooms (the solve then raises them), else the identity.
   for (const double fraction : kZoomFractions) {
-    std::vector<FocusGroup> lowered = groups;
-    for (FocusGroup& g : lowered) g.log_zoom *= fraction;
-    const Eigen::MatrixX2d start =
-        focus_start(mesh, lenses, lowered, cell, band, width, height, pool);
+    Eigen::MatrixX2d start;
+    if (fraction == 1) {
+      start = field.start;
+      relax_folds(start, mesh.V, mesh.F, lenses, band);
+    } else {
+      std::vector<FocusGroup> lowered = field.groups;
+      for (FocusGroup& g : lowered) g.log_zoom *= fraction;
+      start = focus_start(mesh, lenses, lowered, cell, band, width, height, pool);
+    }
     if (!flattener.admissible(start)) continue;
     flattener.admit_anisotropy(start);
     return flattener.solve(start, nullptr, control);

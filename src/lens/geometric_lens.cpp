@@ -423,7 +423,7 @@ LensResult GeometricLens::solve_once(const PlanarMesh& mesh, const Eigen::Aligne
   const bool predicted = cache.predicted.rows() == cache.flat.rows();
   if (r.model == LensModel::kFocus) {
     const double cell = cell_size(box, options_.mesh);
-    r.flattening = flatten_focus(*cache.flattener, r.mesh, lenses, focus.groups, cell,
+    r.flattening = flatten_focus(*cache.flattener, r.mesh, lenses, focus, cell,
                                  focus_band(lenses, cell), width_, height_, *pool_, &numbered);
   } else {
     r.flattening =

@@ -20,8 +20,10 @@ Parts parts(const Eigen::Matrix2d& J) {
   p.F = 0.5 * (J(0, 0) - J(1, 1));
   p.G = 0.5 * (J(1, 0) + J(0, 1));
   p.H = 0.5 * (J(1, 0) - J(0, 1));
-  p.Q = std::hypot(p.E, p.H);
-  p.R = std::hypot(p.F, p.G);
+  // (Not std::hypot, 3-4 times slower: the entries of a Jacobian are far from over- or
+  // underflowing when squared.)
+  p.Q = std::sqrt(p.E * p.E + p.H * p.H);
+  p.R = std::sqrt(p.F * p.F + p.G * p.G);
   return p;
 }
 

@@ -95,6 +95,8 @@ struct FocusField {
   FocusConstraints constraints;
   Eigen::VectorXd log_scale;  ///< #V the group's log zoom in its focus, 0 elsewhere
   Eigen::VectorXd level;      ///< #V 1 where the vertex may move, 0 where pinned
+  /// #V x 2 each vertex moved by the ring it is deepest in: focus_map at the log zooms, pixels.
+  Eigen::MatrixX2d start;
 };
 FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lenses,
                        const std::vector<double>& log_zooms, double cell, double band, double width,
@@ -148,15 +150,16 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
                                     double cell, double band, double width, double height,
                                     ThreadPool& pool);
 
-/// Flattens focus lenses with `flattener` (built on focus_field's constraints and log scales,
-/// Standard::kScaled, kCotan weights) from focus_start, each triangle's anisotropy bound raised
-/// to the start's distortion where that is higher (Flattener::admit_anisotropy: where the rings
-/// of several groups overlap); if the flattener does not admit that start (a fold on the mesh,
-/// a fixed vertex moved), from the start at 0.8, 0.6, 0.4, 0.2 of the log zooms, else from the
-/// identity (the mesh's vertices). `control` as in Flattener::solve.
+/// Flattens focus lenses with `flattener` (built on `field`, focus_field's constraints and log
+/// scales for `mesh`, Standard::kScaled, kCotan weights) from focus_start (`field.start`,
+/// repaired), each triangle's anisotropy bound raised to the start's distortion where that is
+/// higher (Flattener::admit_anisotropy: where the rings of several groups overlap); if the
+/// flattener does not admit that start (a fold on the mesh, a fixed vertex moved), from the
+/// start at 0.8, 0.6, 0.4, 0.2 of the log zooms, else from the identity (the mesh's vertices).
+/// `control` as in Flattener::solve.
 FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
-                            const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups,
-                            double cell, double band, double width, double height, ThreadPool& pool,
+                            const std::vector<Lens>& lenses, const FocusField& field, double cell,
+                            double band, double width, double height, ThreadPool& pool,
                             const SolveControl* control = nullptr);
 
 }  // namespace geolens

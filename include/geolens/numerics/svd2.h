@@ -12,6 +12,8 @@ struct SignedSvd2 {
   double phi = 0, theta = 0;  ///< rotation angles, radians; phi + theta: the closest rotation
 };
 
+/// The entries of J must be below about 1e150 in magnitude (their squares are summed), as any
+/// Jacobian of a warp in pixels is.
 SignedSvd2 signed_svd(const Eigen::Matrix2d& J);
 
 /// signed_svd's (s1, s2) alone, without the angles (no trigonometry).
