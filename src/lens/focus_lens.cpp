@@ -65,46 +65,63 @@ class RingDistance {
       circle_ = c;
       return;
     }
-    polygon_ = region.outline().value_or(std::vector<Eigen::Vector2d>{});
-    const size_t n = polygon_.size();
+    const std::vector<Eigen::Vector2d> polygon =
+        region.outline().value_or(std::vector<Eigen::Vector2d>{});
+    const size_t n = polygon.size();
     double twice_area = 0;  // the shoelace formula: its sign is the orientation
     for (size_t k = 0, j = n - 1; k < n; j = k++)
-      twice_area += polygon_[j].x() * polygon_[k].y() - polygon_[k].x() * polygon_[j].y();
-    reflex_.resize(n);
+      twice_area += polygon[j].x() * polygon[k].y() - polygon[k].x() * polygon[j].y();
     for (size_t k = 0; k < n; ++k) {
-      const Eigen::Vector2d a = polygon_[(k + n - 1) % n], b = polygon_[k],
-                            c = polygon_[(k + 1) % n];
+      const Eigen::Vector2d &a = polygon[(k + n - 1) % n], &b = polygon[k],
+                            &c = polygon[(k + 1) % n];
       const double turn = (b - a).x() * (c - b).y() - (b - a).y() * (c - b).x();
-      reflex_[k] = turn * twice_area < 0;
+      const double length2 = (c - b).squaredNorm();
+      edges_.push_back({b, c - b, length2 > 0 ? 1 / length2 : 0.0, turn * twice_area < 0});
     }
   }
 
   double operator()(const Eigen::Vector2d& p) const {
     if (circle_) return std::max((p - circle_->center).norm() - circle_->radius, 0.0);
-    if (polygon_.empty()) return region_.distance(p);
-    // Edge k joins vertex k and k + 1; inside by the crossing rule (PolygonIndex::contains).
-    const size_t n = polygon_.size();
+    if (edges_.empty()) return region_.distance(p);
+    // Inside by the crossing rule (PolygonIndex::contains); squared distances, and square roots
+    // only where a reflex corner's two edges are within smooth_min's width of each other (the
+    // farther below 9/7 of the nearer).
     bool inside = false;
-    double d = std::numeric_limits<double>::infinity(), first = 0, last = 0;
-    for (size_t k = 0; k < n; ++k) {
-      const Eigen::Vector2d &a = polygon_[k], &b = polygon_[(k + 1) % n];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+    double nearest = std::numeric_limits<double>::infinity(), rounded = nearest;
+    double first = 0, last = 0;
+    auto corner = [&](double a, double b) {
+      if (49 * std::max(a, b) < 81 * std::min(a, b))
+        rounded = std::min(rounded, smooth_min(std::sqrt(a), std::sqrt(b)));
+    };
+    for (size_t k = 0; k < edges_.size(); ++k) {
+      const Edge& e = edges_[k];
+      const Eigen::Vector2d w = p - e.from;
+      // The edge crosses p's horizontal line to p's right (the crossing rule's comparison,
+      // multiplied through by the square of the edge's height).
+      if ((w.y() < 0) != (w.y() < e.along.y()) &&
+          (w.x() * e.along.y() - w.y() * e.along.x()) * e.along.y() < 0)
         inside = !inside;
-      const double edge = segment_distance(p, a, b);
-      d = std::min(d, k > 0 && reflex_[k] ? smooth_min(last, edge) : edge);
-      if (k == 0) first = edge;
-      last = edge;
+      const double t = std::clamp(w.dot(e.along) * e.inverse_length2, 0.0, 1.0);
+      const double d = (w - t * e.along).squaredNorm();
+      nearest = std::min(nearest, d);
+      if (k == 0) first = d;
+      if (k > 0 && e.reflex) corner(last, d);
+      last = d;
     }
     if (inside) return 0;
-    return reflex_[0] ? std::min(d, smooth_min(last, first)) : d;
+    if (edges_[0].reflex) corner(last, first);
+    return std::min(std::sqrt(nearest), rounded);
   }
 
  private:
+  struct Edge {
+    Eigen::Vector2d from, along;  // edge k: from vertex k along to vertex k + 1
+    double inverse_length2;
+    bool reflex;  // the polygon turns against its orientation at vertex k
+  };
   Region region_;
   std::optional<Circle> circle_;
-  std::vector<Eigen::Vector2d> polygon_;
-  std::vector<char> reflex_;  // per vertex: the polygon turns against its orientation there
+  std::vector<Edge> edges_;
 };
 
 // The farthest t >= 0 where the ray c + t u (u a unit vector) meets the boundary of a region
