@@ -50,14 +50,14 @@ double group_distance(const FocusGroup& group, const std::vector<Lens>& lenses,
   return d;
 }
 
-// The distance outside a region as a ring reads it, pixels (0 inside). A circle's and a
-// polygon's are computed here, a polygon's with the crease of the Euclidean distance along the
-// bisector of each reflex corner (where its two edges are equally near) rounded by smooth_min:
-// the ring's contours are offset curves of the focus, and there they would turn sharply, a
-// crease in the picture that the refinement chased along the whole ray (the 5-pointed star at
-// zoom 2.5: 8 passes, 37 k triangles). smooth_min's partial derivatives are non-negative and
-// sum to at most 1, so the distance still grows by at most 1 per unit of length (no fold).
-// Any other region's distance is its own.
+// The distance outside a region as a ring reads it, pixels (0 inside), and the exact distance
+// beside it. A circle's and a polygon's are computed here, a polygon's with the crease of the
+// Euclidean distance along the bisector of each reflex corner (where its two edges are equally
+// near) rounded by smooth_min: the ring's contours are offset curves of the focus, and there they
+// would turn sharply, a crease in the picture that the refinement chased along the whole ray (the
+// 5-pointed star at zoom 2.5: 8 passes, 37 k triangles). smooth_min's partial derivatives are
+// non-negative and sum to at most 1, so the distance still grows by at most 1 per unit of length
+// (no fold). Any other region's distance is its own.
 class RingDistance {
  public:
   explicit RingDistance(const Region& region) : region_(region) {
@@ -80,9 +80,19 @@ class RingDistance {
     }
   }
 
-  double operator()(const Eigen::Vector2d& p) const {
-    if (circle_) return std::max((p - circle_->center).norm() - circle_->radius, 0.0);
-    if (edges_.empty()) return region_.distance(p);
+  // The distance from p, exact and rounded.
+  struct Distance {
+    double exact, rounded;
+  };
+  Distance operator()(const Eigen::Vector2d& p) const {
+    if (circle_) {
+      const double d = std::max((p - circle_->center).norm() - circle_->radius, 0.0);
+      return {d, d};
+    }
+    if (edges_.empty()) {
+      const double d = region_.distance(p);
+      return {d, d};
+    }
     // Inside by the crossing rule (PolygonIndex::contains); squared distances, and square roots
     // only where a reflex corner's two edges are within smooth_min's width of each other (the
     // farther below 9/7 of the nearer).
@@ -108,9 +118,10 @@ class RingDistance {
       if (k > 0 && e.reflex) corner(last, d);
       last = d;
     }
-    if (inside) return 0;
+    if (inside) return {0, 0};
     if (edges_[0].reflex) corner(last, first);
-    return std::min(std::sqrt(nearest), rounded);
+    const double exact = std::sqrt(nearest);
+    return {exact, std::min(exact, rounded)};
   }
 
  private:
@@ -346,6 +357,7 @@ struct Ring {
   struct Place {
     Eigen::Vector2d u = Eigen::Vector2d::Zero();
     double t = 0, s = 0, inner = 0, edge = 0;
+    double distance = 0;  // from q to the group's nearest region (exact), pixels
     bool in_footprint() const { return s < edge * (1 - 1e-12); }
   };
   Place place(const Eigen::Vector2d& q) const {
@@ -354,9 +366,14 @@ struct Ring {
     p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
     p.inner = inner(p.u);
     p.edge = edge(p.u, p.inner);
-    double d = std::numeric_limits<double>::infinity();
-    for (const RingDistance& region : regions_) d = std::min(d, region(q));
-    p.s = std::max(p.t, p.inner + std::max(d - near, 0.0));
+    double rounded = std::numeric_limits<double>::infinity();
+    p.distance = rounded;
+    for (const RingDistance& region : regions_) {
+      const RingDistance::Distance d = region(q);
+      p.distance = std::min(p.distance, d.exact);
+      rounded = std::min(rounded, d.rounded);
+    }
+    p.s = std::max(p.t, p.inner + std::max(rounded - near, 0.0));
     return p;
   }
 
@@ -520,9 +537,8 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
       size_t owner = 0;
       Ring::Place owner_place;
       for (size_t g = 0; g < out.groups.size(); ++g) {
-        const double d = group_distance(out.groups[g], lenses, p);
-        if (d < nearest) nearest = d, closest = int(g);
         const Ring::Place place = rings[g].place(p);
+        if (place.distance < nearest) nearest = place.distance, closest = int(g);
         if (place.in_footprint() && place.s / place.edge < deepest) {
           deepest = place.s / place.edge;
           owner = g;
