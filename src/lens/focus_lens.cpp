@@ -12,7 +12,6 @@
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/lens/texture_map.h"
 #include "numerics/bracketed_root.h"
 

@@ -111,11 +111,13 @@ std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
 /// The vertices of `mesh`, made for lenses `from` (over the box `from_box`, cell side
 /// `from_cell`, pixels) to follow focus_curves as conform_mesh's `on_curve` records, moved with
 /// the lenses to `to` (the same lenses moved by one translation; box `to_box`, cell `to_cell`),
-/// pixels: a vertex follows the lenses by its depth in its group's ring (1 in a focus, falling
-/// linearly in the ring's radius s to 0 at the footprint's edge) and the box's stretch by the
-/// rest, vertices on the box's sides stay on them, and a vertex within two cells of a footprint's
-/// edge moves along its ray as the edge moved there (one on the edge, onto it). None where a
-/// triangle would keep less than a fifth of its area. #V x 2.
+/// pixels. A vertex in a group's footprint keeps its ray from the ring's centre and its place
+/// rho = (s - inner) / (edge - inner) between the focus and the footprint's edge, where that edge
+/// moved to along the ray (so it moves rigidly in a focus, and along the border where the edge
+/// is the border); one beyond every edge turns within two cells of it to the box's stretch, and
+/// vertices on the box's sides take that stretch, so they stay on them; one on a footprint's edge
+/// goes onto the moved edge. None where a triangle would keep less than a fifth of its area (a
+/// sliver of under a hundredth of a cell's area may shrink further, but not fold). #V x 2.
 std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
                                                  const std::vector<int>& on_curve,
                                                  const std::vector<Lens>& from,
