@@ -668,7 +668,7 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
       size_t g = was.size();
       Ring::Place at;
       double key = std::numeric_limits<double>::infinity();
-      for (size_t k = 0; k < was.size() && mesh.sides[size_t(i)] == 0; ++k) {
+      for (size_t k = 0; k < was.size(); ++k) {
         if (was[k].log_zoom <= 0) continue;  // nothing moves
         const Ring::Place place = rings_was[k].place(p);
         if ((place.s - place.edge) / place.edge < key) {
@@ -691,7 +691,12 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
       const Eigen::Vector2d ringed = p + shift + std::clamp(rho, 0.0, 1.0) * moved * at.u;
       const double w = level <= 0 ? 1.0 : std::max(0.0, 1 - level / near);
       Eigen::Vector2d q = w * ringed + (1 - w) * boxed;
-      if (on_curve[size_t(i)] >= regions) {
+      // A vertex on a side of the box slides along it (where the footprint's edge runs along the
+      // border, with its neighbours on the edge).
+      const uint8_t sides = mesh.sides[size_t(i)];
+      if (sides & (kLeft | kRight)) q.x() = boxed.x();
+      if (sides & (kTop | kBottom)) q.y() = boxed.y();
+      if (on_curve[size_t(i)] >= regions && sides == 0) {
         // Onto the moved edge, but not onto the image border where the edge runs along it (a
         // triangle with a side there would vanish): at least a thousandth of a cell inside it.
         const double margin = 1e-3 * to_cell;

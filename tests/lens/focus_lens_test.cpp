@@ -16,6 +16,7 @@
 #include "geolens/core/thread_pool.h"
 #include "geolens/eval/focus_measure.h"
 #include "geolens/eval/footprint_sweep.h"
+#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/classic_lens.h"
@@ -259,11 +260,51 @@ TEST(FocusLens, StartHasNoCreaseAlongAReflexCornersBisector) {
   EXPECT_LT(fine, 0.2 * coarse) << coarse << " / " << fine;
 }
 
+// moved_focus_mesh's contract, on the benchmark's circle (its footprint cut on three sides) moved
+// 3 px right and 2 px down: the focus's vertices move rigidly, those on the footprint's edge lie
+// on the moved edge (or a thousandth of a cell inside the border, where the edge runs along it),
+// those on an image side stay on it, and no triangle folds.
+TEST(FocusLens, MovedMeshKeepsItsCurvesAndSides) {
+  const Lens from{Region::circle({400, 512}, 150), 2}, to{Region::circle({403, 514}, 150), 2};
+  const Grid grid = make_grid(1024, 1024, 100);
+  const double band = focus_band({from}, grid.cell);
+  std::vector<int> on_curve;
+  const PlanarMesh mesh = conform_mesh(grid, focus_curves({from}, grid.cell, band, 1024, 1024),
+                                       0.4 * grid.cell, {}, &on_curve);
+  const Eigen::AlignedBox2d box(Eigen::Vector2d::Zero(), Eigen::Vector2d(1024, 1024));
+  ThreadPool pool(1);
+  const std::optional<Eigen::MatrixX2d> V = moved_focus_mesh(
+      mesh, on_curve, {from}, box, grid.cell, {to}, box, grid.cell, 1024, 1024, pool);
+  ASSERT_TRUE(V);
+  const std::vector<MeshCurve> curves = focus_curves({to}, grid.cell, band, 1024, 1024);
+  ASSERT_EQ(curves.size(), 2u);  // the circle, the footprint's edge
+  int rim = 0, edge = 0;
+  for (Eigen::Index i = 0; i < V->rows(); ++i) {
+    const Eigen::Vector2d p = mesh.V.row(i), q = V->row(i);
+    if (from.region.distance(p) == 0) {
+      EXPECT_LT((q - p - Eigen::Vector2d(3, 2)).norm(), 1e-9) << i;
+      rim += on_curve[size_t(i)] == 0;
+    }
+    if (on_curve[size_t(i)] == 1 && mesh.sides[size_t(i)] == 0) {
+      const double border = std::min({q.x(), q.y(), 1024 - q.x(), 1024 - q.y()});
+      if (border > 2e-3 * grid.cell) EXPECT_NEAR(curves[1].level(q), 0, 1e-6) << i;
+      ++edge;
+    }
+    if (mesh.V(i, 0) == 0 || mesh.V(i, 0) == 1024) EXPECT_EQ(q.x(), mesh.V(i, 0)) << i;
+    if (mesh.V(i, 1) == 0 || mesh.V(i, 1) == 1024) EXPECT_EQ(q.y(), mesh.V(i, 1)) << i;
+  }
+  EXPECT_GT(rim, 50);
+  EXPECT_GT(edge, 50);
+  EXPECT_EQ(count_folds(*V, mesh.F), 0);
+}
+
 // A lens dragged with its footprint cut by the image border: its mesh moves with it, deformed
-// where the border bends the ring, for kMovedMeshDrift cells before it is made anew, instead of
-// being made anew each frame. Its picture stays within half a pixel of a 4x finer solve's (as
-// FinerMesh asks of a fresh mesh), and within a fifth of a pixel of the fresh mesh's own gap to
-// it, at the frames farthest from where the mesh was made (3 and 10 px a frame).
+// where the border bends the ring, for kMovedMeshDrift (1.5) cells before it is made anew,
+// instead of being made anew each frame. Its picture stays within half a pixel of a 4x finer
+// solve's (as FinerMesh asks of a fresh mesh), and within a fifth of a pixel of the fresh mesh's
+// own gap to it, at frames moved 10 to 15 px from where the mesh was made (3 px a frame: frames
+// 4 and 5; 10 px: 1 and 5). With 2 cells of drift the circle dragged 10 px a frame reached 0.41
+// against the fresh mesh's 0.18; with 3, 1.6 px.
 struct Drag {
   const char* name;
   std::function<Region(double x)> region;
@@ -290,12 +331,12 @@ TEST_P(DraggedAlongTheBorder, MovedMeshDrawsWhatAFreshMeshDraws) {
   LensOptions fine_options;
   fine_options.mesh = 400;
   const GeometricLens fresh(1024, 1024), fine(1024, 1024, fine_options);
-  for (int frame = 0; frame <= 8; ++frame) {
+  for (int frame = 0; frame <= 5; ++frame) {
     const Lens lens{GetParam().region(400 + GetParam().step * frame), GetParam().zoom};
     const LensResult moved = session.update({lens});
     SCOPED_TRACE(frame);
     ASSERT_EQ(summarize(measure_triangles(moved.warp)).flipped, 0);
-    if (frame != 2 && frame != 5 && frame != 6 && frame != 8) continue;
+    if (frame != 1 && frame != 4 && frame != 5) continue;
     const WarpMesh truth = fine.solve({lens}).warp;
     const double gap = warp_gap(moved.warp, truth);
     EXPECT_LT(gap, 0.5);

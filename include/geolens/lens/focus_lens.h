@@ -114,10 +114,11 @@ std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
 /// pixels. A vertex in a group's footprint keeps its ray from the ring's centre and its place
 /// rho = (s - inner) / (edge - inner) between the focus and the footprint's edge, where that edge
 /// moved to along the ray (so it moves rigidly in a focus, and along the border where the edge
-/// is the border); one beyond every edge turns within two cells of it to the box's stretch, and
-/// vertices on the box's sides take that stretch, so they stay on them; one on a footprint's edge
-/// goes onto the moved edge. None where a triangle would keep less than a fifth of its area (a
-/// sliver of under a hundredth of a cell's area may shrink further, but not fold). #V x 2.
+/// is the border); one beyond every edge turns within two cells of it to the box's stretch; one
+/// on a side of the box takes the stretch across the side, so it stays on it, and slides along
+/// it; one on a footprint's edge goes onto the moved edge. None where a triangle would keep less
+/// than a fifth of its area (a sliver of under a hundredth of a cell's area may shrink further, but
+/// not fold). #V x 2.
 std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
                                                  const std::vector<int>& on_curve,
                                                  const std::vector<Lens>& from,
