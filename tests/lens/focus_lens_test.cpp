@@ -365,6 +365,12 @@ INSTANTIATE_TEST_SUITE_P(
                          [](double x) {
                            return Region::circle({x, 120}, 80);
                          },
+                         2, 3},
+                    // over the top side: magnified about a point on it
+                    Drag{"over_side",
+                         [](double x) {
+                           return Region::circle({x, 40}, 80);
+                         },
                          2, 3}),
     [](const testing::TestParamInfo<Drag>& info) { return std::string(info.param.name); });
 
