@@ -234,7 +234,6 @@ TEST(FocusLens, FootprintMustExceedTheZoom) {
             summarize(measure_triangles(tight.warp)).conformal_max);
 }
 
-// The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
 // The ring's contours are offset curves of the focus, rounded where a reflex corner's two edges
 // are equally near (a crease there would show along the whole bisector): across the bisector of
 // the L's reflex corner, 60 px out, the start's slope changes in proportion to the step it is
@@ -374,6 +373,7 @@ INSTANTIATE_TEST_SUITE_P(
                          2, 3}),
     [](const testing::TestParamInfo<Drag>& info) { return std::string(info.param.name); });
 
+// The interactive path: a dragged focus lens keeps its zoom and uniform focus every frame.
 TEST(FocusLens, UpdateFollowsADraggedLens) {
   LensSession geometric(1024, 1024);
   for (int step = 0; step < 6; ++step) {
