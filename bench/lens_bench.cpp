@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
@@ -106,17 +107,17 @@ namespace {
 // The last argument picks the model: 0 the auto model (the lift for a circle, the field for a
 // polygon; the default before issue 13), 1 the focus model (the default since), 2 the focus
 // model's drafts (what LensWorker shows while a lens is dragged).
-LensModel model_argument(const benchmark::State& state, int index) {
-  return state.range(index) ? LensModel::kFocus : LensModel::kAuto;
+LensModel model_argument(std::int64_t argument) {
+  return argument ? LensModel::kFocus : LensModel::kAuto;
 }
-bool draft_argument(const benchmark::State& state, int index) { return state.range(index) == 2; }
+bool draft_argument(std::int64_t argument) { return argument == 2; }
 
 void BM_UpdateMoved(benchmark::State& state) {
   LensOptions o;
-  o.model = model_argument(state, 2);
+  o.model = model_argument(state.range(2));
   o.mesh = int(state.range(0));
   const double step = double(state.range(1));
-  const bool draft = draft_argument(state, 2);
+  const bool draft = draft_argument(state.range(2));
   LensSession lens(1024, 1024, o);
   double x = 400;
   lens.update({Lens{Region::circle({x, 512}, 150)}});
@@ -137,10 +138,10 @@ void BM_UpdateMoved(benchmark::State& state) {
 // its Region built anew every frame (rasterized medial axis and distance fields included, about
 // 1 ms; 0 to 2), or moved by Region::translated, as geolens-view drags it (3 to 5).
 void BM_UpdateMovedStar(benchmark::State& state) {
-  const int variant = int(state.range(1) % 3);
+  const std::int64_t model = state.range(1) % 3;
   const bool translate = state.range(1) >= 3;
   LensOptions o;
-  o.model = variant ? LensModel::kFocus : LensModel::kAuto;
+  o.model = model_argument(model);
   o.mesh = int(state.range(0));
   LensSession lens(1024, 1024, o);
   std::vector<Eigen::Vector2d> outline;
@@ -155,7 +156,7 @@ void BM_UpdateMovedStar(benchmark::State& state) {
     for (Eigen::Vector2d& v : p) v.x() += x;
     return Region::polygon(p);
   };
-  const bool draft = variant == 2;
+  const bool draft = draft_argument(model);
   double x = 400;
   lens.update({Lens{star(x), 2.5}}, {}, draft);
   int iterations = 0;
@@ -170,7 +171,7 @@ void BM_UpdateMovedStar(benchmark::State& state) {
 // First placement: a new GeometricLens, nothing cached, calibrated from the first guess.
 void BM_UpdateFirst(benchmark::State& state) {
   LensOptions o;
-  o.model = model_argument(state, 1);
+  o.model = model_argument(state.range(1));
   o.mesh = int(state.range(0));
   for (auto _ : state) {
     LensSession lens(1024, 1024, o);
