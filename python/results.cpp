@@ -153,7 +153,13 @@ void bind_results(py::module_& m) {
                              [](const LensSolveResult& r) { return to_string(r.result.model); })
       .def_property_readonly(
           "zoom_fits", [](const LensSolveResult& r) { return to_numpy(r.result.zoom_fits); },
-          "focus model, per lens: the largest zoom that fits where it is (empty otherwise)")
+          "focus model, per lens: the zoom it was solved at, the one asked where that fits, else "
+          "the largest that does (empty otherwise)")
+      .def_property_readonly(
+          "zoom_fit_reasons",
+          [](const LensSolveResult& r) { return r.result.zoom_fit_reasons; },
+          "focus model, per lens: what limits its zoom where it gets at least 0.1 % less than "
+          "asked, else '' (empty otherwise)")
       .def_property_readonly(
           "iterations", [](const LensSolveResult& r) { return r.result.flattening.iterations; })
       .def_property_readonly("converged",

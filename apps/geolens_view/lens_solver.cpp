@@ -95,11 +95,13 @@ SolvedFrame LensSolver::latest() const {
     shown_.solve_ms = ms;
     shown_.stages.reset();
     shown_.solves = 0;
+    shown_.fit_reasons.clear();
     if (method_ == "geometric") {
       // A LensSession's worker answers with LensResults (lens_worker.h).
       const auto& solved = static_cast<const LensResult&>(*shown_.result);
       shown_.stages = solved.timings;
       shown_.solves = solved.solves;
+      shown_.fit_reasons = solved.zoom_fit_reasons;
     }
   };
   // An answer to a request still pending (not dropped, not older than one already shown); or the

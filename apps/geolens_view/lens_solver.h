@@ -42,6 +42,9 @@ struct SolvedFrame {
   /// calibration solves); none for a classic lens, which has no stages, or the identity.
   std::optional<StageTimings> stages;
   int solves = 0;
+  /// Per lens, what limits its zoom where it gets less than asked (LensResult::zoom_fit_reasons);
+  /// empty for a classic lens.
+  std::vector<std::string> fit_reasons;
   std::string error;  ///< why the latest request after `request` failed; empty if none did
 };
 

@@ -36,6 +36,14 @@ def test_lens_that_does_not_fit_is_solved_at_the_zoom_that_fits():
     result = geolens.GeometricLens(1024, 1024).solve(geolens.circle(300, 300, 110, zoom=2.5))
     assert result.zoom_fits[0] < 2.5
     assert result.zoom_measured[0] == pytest.approx(result.zoom_fits[0], rel=0.1)
+    assert result.zoom_fit_reasons[0].startswith("the image's ")
+    assert result.stats["lenses"][0]["zoom_fit_reason"] == result.zoom_fit_reasons[0]
+
+
+def test_lens_that_fits_gets_its_zoom_exactly_and_no_reason():
+    result = geolens.GeometricLens(4725, 4050).solve(geolens.circle(2362, 2025, 150, zoom=5))
+    assert result.zoom_fits[0] == 5
+    assert result.zoom_fit_reasons == [""]
 
 
 def test_warp_arrays_are_read_only_views_of_the_right_shapes(solved):

@@ -57,7 +57,8 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     highest[k] = std::max(highest[k], m);
   }
   // Beyond the footprints: outside every focus group's disk (focus_lens.h).
-  const std::vector<FocusGroup> groups = focus_groups(lenses);
+  const std::vector<FocusGroup> groups =
+      focus_groups(lenses, warp.screen_width, warp.screen_height);
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose();
     bool beyond = true;

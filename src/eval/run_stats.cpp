@@ -41,6 +41,7 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
     nlohmann::json lens = lens_json(lenses[k], result.zoom_measured[k], foci[k]);
     lens["height"] = result.heights[k];
     if (k < result.zoom_fits.size()) lens["zoom_fit"] = result.zoom_fits[k];
+    if (k < result.zoom_fit_reasons.size()) lens["zoom_fit_reason"] = result.zoom_fit_reasons[k];
     list.push_back(lens);
   }
   stats["lenses"] = list;

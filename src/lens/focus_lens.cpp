@@ -201,37 +201,42 @@ struct Ring {
         width(width_),
         height(height_) {
     for (size_t k : group.lenses) regions_.emplace_back(lenses[k].region);
-    // A region over an image side is magnified about a point on that side, so the side stays.
-    Eigen::AlignedBox2d b;
-    for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
-    Eigen::Vector2d c = group.centre;
-    if (b.min().x() <= 0) c.x() = 0;
-    if (b.max().x() >= width) c.x() = width;
-    if (b.min().y() <= 0) c.y() = 0;
-    if (b.max().y() >= height) c.y() = height;
-    place_at(c, group, lenses);
+    place_at(group.fixed, group, lenses);
     // (A mesh that follows the regions resolves them: its band is a millionth of a cell.)
     for (size_t k : group.lenses)
       if (lenses[k].region.size() < 3 * cell && near > 0.5 * cell) margin = 2 * cell;
   }
 
   // The smallest ratio, over the rays into the image, of the footprint's edge, less `margin`,
-  // to the focus's extent. The margin is two cells for the mesh to bend in when a region of the
-  // group spans fewer than three cells of a mesh that does not follow it (below the mesh's
-  // resolution, where a ring folds or shrinks the focus), else 0: a margin of cells made the zoom
-  // that fits depend on the mesh (a circle of radius 100 at 80 px from a side fitted 1.92 at 100 x
-  // 100 and 2.0 at 400 x 400); a mesh too coarse for the ring folds and is caught by
-  // unfolding_zooms.
-  double min_ratio() const {
-    double r = std::numeric_limits<double>::infinity();
+  // to the focus's extent, and what bounds the edge on that ray. The margin is two cells for the
+  // mesh to bend in when a region of the group spans fewer than three cells of a mesh that does
+  // not follow it (below the mesh's resolution, where a ring folds or shrinks the focus), else 0:
+  // a margin of cells made the zoom that fits depend on the mesh (a circle of radius 100 at 80 px
+  // from a side fitted 1.92 at 100 x 100 and 2.0 at 400 x 400); a mesh too coarse for the ring
+  // folds and is caught by unfolding_zooms.
+  struct Room {
+    double ratio = std::numeric_limits<double>::infinity();
+    enum class By { kFootprint, kDisk, kSide } by = By::kFootprint;
+    Eigen::Vector2d u = Eigen::Vector2d::UnitX();  // the ray
+  };
+  Room min_ratio() const {
+    Room room;
     constexpr int kRays = 720;
     for (int k = 0; k < kRays; ++k) {
       const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
       const Eigen::Vector2d u(std::cos(a), std::sin(a));
-      if (ray_exits(centre, u, width, height).minCoeff() <= 0) continue;  // leaves at once
-      r = std::min(r, (edge(u) - margin) / inner(u));
+      const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
+      if (exits.minCoeff() <= 0) continue;  // leaves at once
+      const double inner_u = inner(u), r = (edge(u, inner_u) - margin) / inner_u;
+      if (!(r < room.ratio)) continue;
+      room.ratio = r;
+      room.u = u;
+      const double disk = disk_distance(u);
+      room.by = exits.minCoeff() < std::min(ratio * inner_u, disk) ? Room::By::kSide
+                : disk < ratio * inner_u                           ? Room::By::kDisk
+                                                                   : Room::By::kFootprint;
     }
-    return r;
+    return room;
   }
 
   // Puts the centre at c and finds the focus's extent along every ray from it.
@@ -342,13 +347,16 @@ struct Ring {
   double edge(const Eigen::Vector2d& u) const { return edge(u, inner(u)); }
   // The same, given inner(u).
   double edge(const Eigen::Vector2d& u, double inner_u) const {
-    const Eigen::Vector2d w = centre - disk_centre;
-    const double b = u.dot(w);
-    const double disk =
-        -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
-    const double outer = std::min(ratio * inner_u, disk);
+    const double outer = std::min(ratio * inner_u, disk_distance(u));
     const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
     return smooth_min(outer, smooth_min(exits.x(), exits.y()));
+  }
+
+  // How far the ray along u meets the edge of the group's disk, pixels.
+  double disk_distance(const Eigen::Vector2d& u) const {
+    const Eigen::Vector2d w = centre - disk_centre;
+    const double b = u.dot(w);
+    return -b + std::sqrt(std::max(0.0, b * b - w.squaredNorm() + disk_radius * disk_radius));
   }
 
   // Where q lies on its ray: at t from the centre, at "radius" s >= t (s = inner where q is in the
@@ -418,7 +426,8 @@ double footprint_ratio(const Lens& lens) {
 }
 
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
-                                     const std::vector<double>& log_zooms) {
+                                     const std::vector<double>& log_zooms, double width,
+                                     double height) {
   require(log_zooms.size() == lenses.size(), "focus_groups", "one log zoom per lens expected");
   const size_t n = lenses.size();
   // Union-find over the pairs whose magnified foci (disks of zoom x reach) overlap.
@@ -452,14 +461,26 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
       g.log_zoom = std::max(g.log_zoom, log_zooms[k]);
     }
     g.centre = g.lenses.size() == 1 ? lenses[g.lenses[0]].region.peak() : peaks.center();
-    for (size_t k : g.lenses)
+    Eigen::AlignedBox2d bounds;
+    for (size_t k : g.lenses) {
       g.reach =
           std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
-    g.margin = (ratio - 1) * g.reach;
+      bounds.extend(lenses[k].region.bounds());
+    }
+    // A region over an image side is magnified about a point on that side, so the side stays.
+    g.fixed = g.centre;
+    if (bounds.min().x() <= 0) g.fixed.x() = 0;
+    if (bounds.max().x() >= width) g.fixed.x() = width;
+    if (bounds.min().y() <= 0) g.fixed.y() = 0;
+    if (bounds.max().y() >= height) g.fixed.y() = height;
+    // The footprint, the focus scaled by the ratio about that point, lies within the disk of
+    // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre.
+    g.margin = (ratio - 1) * (g.reach + (g.fixed - g.centre).norm());
   }
   // Footprints stop where they would meet a neighbour's: where the disks of radius reach +
   // margin of two groups overlap, both margins shrink by the same factor until the disks touch
   // (their foci do not overlap, so there is room), and no lens pushes another.
+  std::vector<double> shrunk(groups.size(), 1.0);  // the most each group's margin was shrunk by
   for (size_t i = 0; i < groups.size(); ++i) {
     for (size_t j = i + 1; j < groups.size(); ++j) {
       FocusGroup &a = groups[i], &b = groups[j];
@@ -468,15 +489,17 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
       const double scale = std::max(room, 0.0) / (a.margin + b.margin);
       a.margin *= scale;
       b.margin *= scale;
+      if (scale < shrunk[i]) shrunk[i] = scale, a.neighbour = int(b.lenses.front());
+      if (scale < shrunk[j]) shrunk[j] = scale, b.neighbour = int(a.lenses.front());
     }
   }
   return groups;
 }
 
-std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses) {
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double width, double height) {
   std::vector<double> log_zooms;
   for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-  return focus_groups(lenses, log_zooms);
+  return focus_groups(lenses, log_zooms, width, height);
 }
 
 bool footprint_clear_of_border(const FocusGroup& group, double width, double height) {
@@ -496,11 +519,36 @@ double radial_distortion_bound(double zoom, double ratio) {
 }
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
-                                  double width, double height) {
+                                  double width, double height, std::vector<std::string>* reasons) {
   std::vector<double> fits(lenses.size());
-  for (const FocusGroup& group : focus_groups(lenses)) {
-    const double ratio = Ring(group, lenses, cell, band, width, height).min_ratio();
-    for (size_t k : group.lenses) fits[k] = ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0;
+  if (reasons) reasons->assign(lenses.size(), "");
+  for (const FocusGroup& group : focus_groups(lenses, width, height)) {
+    const Ring ring(group, lenses, cell, band, width, height);
+    const Ring::Room room = ring.min_ratio();
+    for (size_t k : group.lenses)
+      fits[k] = room.ratio > 1 ? std::pow(room.ratio, kFitExponent) : 1.0;
+    if (!reasons) continue;
+    std::string why;
+    if (room.by == Ring::Room::By::kSide) {
+      // The side the ray leaves by, and how far the group's regions are from it.
+      Eigen::AlignedBox2d b;
+      for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
+      const Eigen::Vector2d exits = ray_exits(ring.centre, room.u, width, height);
+      const bool vertical = exits.x() < exits.y();
+      const char* side =
+          vertical ? (room.u.x() > 0 ? "right" : "left") : (room.u.y() > 0 ? "bottom" : "top");
+      const double gap = vertical ? (room.u.x() > 0 ? width - b.max().x() : b.min().x())
+                                  : (room.u.y() > 0 ? height - b.max().y() : b.min().y());
+      why = "the image's " + std::string(side) + " side, " +
+            std::to_string(int(std::lround(std::max(gap, 0.0)))) +
+            " px from the region (a lens farther from it or smaller fits more)";
+    } else if (room.by == Ring::Room::By::kDisk && group.neighbour >= 0) {
+      why = "lens " + std::to_string(group.neighbour + 1) +
+            " beside it (lenses farther apart fit more)";
+    } else {
+      why = "its footprint (a larger footprint ratio fits more)";
+    }
+    for (size_t k : group.lenses) (*reasons)[k] = why;
   }
   return fits;
 }
@@ -517,7 +565,7 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
             "log zoom must be finite and >= 0, got " + std::to_string(z));
   const Eigen::Index n = V.rows();
   FocusField out;
-  out.groups = focus_groups(lenses, log_zooms);
+  out.groups = focus_groups(lenses, log_zooms, width, height);
   std::vector<Ring> rings;
   for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, band, width, height);
   FocusConstraints& c = out.constraints;
@@ -647,7 +695,8 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
                                                  double width, double height, ThreadPool& pool) {
   require(from.size() == to.size() && !from.empty() && on_curve.size() == size_t(mesh.V.rows()),
           "moved_focus_mesh", "the same lenses, and a curve index per vertex, expected");
-  const std::vector<FocusGroup> was = focus_groups(from), now = focus_groups(to);
+  const std::vector<FocusGroup> was = focus_groups(from, width, height),
+                                now = focus_groups(to, width, height);
   require(was.size() == now.size(), "moved_focus_mesh", "the lenses must keep their groups");
   std::vector<Ring> rings_was, rings_now;
   for (size_t g = 0; g < was.size(); ++g) {
@@ -735,7 +784,7 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
                                     double cell, double band, double width, double height,
                                     ThreadPool& pool) {
   std::vector<double> zooms(lenses.size(), 1.0);
-  for (const FocusGroup& group : focus_groups(lenses)) {
+  for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     // The footprints are disjoint, so each group is tried on its own.
     const Ring ring(group, lenses, cell, band, width, height);
     for (const double fraction : kZoomFractions) {
@@ -791,7 +840,7 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
     else if (const std::optional<std::vector<Eigen::Vector2d>> p = lens.region.outline())
       curves.push_back(polygon_curve(*p));
   }
-  for (const FocusGroup& group : focus_groups(lenses)) {
+  for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     if (group.log_zoom <= 0) continue;  // nothing moves
     auto ring = std::make_shared<const Ring>(group, lenses, cell, band, width, height);
     if (ring->inner_.size() == 1 && footprint_clear_of_border(group, width, height)) {

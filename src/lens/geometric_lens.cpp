@@ -95,7 +95,7 @@ Eigen::AlignedBox2d GeometricLens::solved_box(const std::vector<Lens>& lenses) c
   Eigen::AlignedBox2d box;
   if (focus) {
     // Every footprint lies within its group's reach plus margin of the group's centre.
-    for (const FocusGroup& g : focus_groups(lenses)) {
+    for (const FocusGroup& g : focus_groups(lenses, width_, height_)) {
       const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.reach + g.margin);
       box.extend(g.centre - half).extend(g.centre + half);
     }
@@ -128,7 +128,8 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
     const double band = focus_band(lenses, cell);
     MeshRefinement refine;
     if (!draft && options_.mesh_tolerance > 0) {
-      refine.map = focus_map(lenses, focus_groups(lenses), cell, band, width_, height_, *pool_);
+      refine.map = focus_map(lenses, focus_groups(lenses, width_, height_), cell, band, width_,
+                             height_, *pool_);
       // No coarser than kRelativeTolerance of the smallest region's reach either: the start's
       // shape across a triangle is off by about its position error over its size, so a small
       // lens needs a finer tolerance for the same shape (a 20 px circle at zoom 3, footprint
@@ -191,7 +192,7 @@ constexpr double kMovedMeshDrift = 1.5;
 
 // Whether every focus group's footprint is clear of the image border (footprint_clear_of_border).
 bool GeometricLens::clear_of_border(const std::vector<Lens>& lenses) const {
-  const std::vector<FocusGroup> groups = focus_groups(lenses);
+  const std::vector<FocusGroup> groups = focus_groups(lenses, width_, height_);
   return std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
     return footprint_clear_of_border(g, width_, height_);
   });
@@ -222,30 +223,94 @@ std::optional<Grid> GeometricLens::moved_grid(const MeshMemo& memo, const std::v
   return grid;
 }
 
-std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, std::vector<double>& fits,
-                                        Grid& grid, Eigen::AlignedBox2d& box, SolveCache* cache,
+namespace {
+
+// A zoom is short of the one asked when it is at least 0.1 % less (the fit warning's threshold)
+// or, in the search, short by more than rounding.
+constexpr double kShortfall = 1e-3, kRounding = 1e-9;
+bool short_of(double fit, double zoom, double by) { return fit < zoom * (1 - by); }
+
+// The fit's search: rounds (a group lowered may split into groups that share room differently)
+// and halvings of the group's log zoom over [0, ln kMaxZoom] (to 2^-20 of ln 8: 0.0002 %), on
+// the same points whatever the zoom asked, so that asking for more never gets less by rounding.
+constexpr int kFitRounds = 3, kFitHalvings = 20;
+
+}  // namespace
+
+std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
+                                         std::vector<std::string>& reasons) const {
+  // The fits of lenses at their zooms, on the box and mesh cell they would be solved on; the
+  // footprint of a lens that has no ratio of its own follows its zoom (footprint_ratio).
+  auto fits_of = [&](const std::vector<Lens>& at, std::vector<std::string>* why) {
+    const Eigen::AlignedBox2d box = solved_box(at);
+    const double cell = cell_size(box, options_.mesh);
+    return fitting_zooms(at, cell, focus_band(at, cell), width_, height_, why);
+  };
+  std::vector<Lens> out = lenses;
+  for (int round = 0; round < kFitRounds; ++round) {
+    const std::vector<double> fits = fits_of(out, nullptr);
+    bool fit = true;
+    for (const FocusGroup& group : focus_groups(out, width_, height_)) {
+      auto members_fit = [&](const std::vector<Lens>& at, const std::vector<double>& f) {
+        return std::none_of(group.lenses.begin(), group.lenses.end(),
+                            [&](size_t k) { return short_of(f[k], at[k].zoom, kRounding); });
+      };
+      if (members_fit(out, fits)) continue;
+      fit = false;
+      // The largest group log zoom below the one that does not fit at which the group fits, each
+      // member's log zoom scaled with it (0 is the identity).
+      std::vector<Lens> trial = out;
+      auto scale = [&](double log_zoom) {
+        for (size_t k : group.lenses)
+          trial[k].zoom = std::exp(log_zoom / group.log_zoom * std::log(out[k].zoom));
+      };
+      double lo = 0, hi = std::log(kMaxZoom);
+      for (int i = 0; i < kFitHalvings; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        scale(mid);
+        (mid < group.log_zoom && members_fit(trial, fits_of(trial, nullptr)) ? lo : hi) = mid;
+      }
+      scale(lo);
+      for (size_t k : group.lenses) out[k].zoom = trial[k].zoom;
+    }
+    if (fit) break;
+  }
+  // What limits each lens that gets less than asked: the fit just above its zoom.
+  std::vector<Lens> above = out;
+  for (size_t k = 0; k < out.size(); ++k)
+    if (short_of(out[k].zoom, lenses[k].zoom, kShortfall))
+      above[k].zoom = std::min(lenses[k].zoom, out[k].zoom * (1 + kShortfall));
+  fits_of(above, &reasons);
+  for (size_t k = 0; k < out.size(); ++k)
+    if (!short_of(out[k].zoom, lenses[k].zoom, kShortfall)) reasons[k].clear();
+  return out;
+}
+
+std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensResult& r, Grid& grid,
+                                        Eigen::AlignedBox2d& box, SolveCache* cache,
                                         bool draft) const {
-  fits.clear();
+  r.zoom_fits.clear();
+  r.zoom_fit_reasons.clear();
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   if (model_for(lenses) != LensModel::kFocus) {
     grid = base_grid(lenses, box);
     return lenses;
   }
-  box = solved_box(lenses);
-  const double cell = cell_size(box, options_.mesh);
-  fits = fitting_zooms(lenses, cell, focus_band(lenses, cell), width_, height_);
-  std::vector<Lens> out = lenses;
+  std::vector<Lens> out = fitting(lenses, r.zoom_fit_reasons);
+  std::vector<double>& fits = r.zoom_fits;
+  for (const Lens& lens : out) fits.push_back(lens.zoom);
+  // Then what the mesh of the fitted lenses, the one they are solved on, holds without folding
+  // (its footprints kept, the curves the mesh follows); the last frame's mesh, moved, where the
+  // lenses only moved.
   auto lower = [&](const std::vector<double>& caps) {
     for (size_t k = 0; k < out.size(); ++k) {
-      fits[k] = std::min(fits[k], caps[k]);
-      if (out[k].zoom <= fits[k]) continue;
-      out[k].footprint = footprint_ratio(out[k]);  // the footprint asked for stays
-      out[k].zoom = std::max(1.0, fits[k]);
+      if (!short_of(caps[k], out[k].zoom, kRounding)) continue;
+      out[k].footprint = footprint_ratio(out[k]);
+      out[k].zoom = fits[k] = std::max(1.0, caps[k]);
+      if (short_of(fits[k], lenses[k].zoom, kShortfall))
+        r.zoom_fit_reasons[k] = "the mesh (a finer mesh fits more)";
     }
   };
-  lower(fits);
-  // Then what the mesh of the clamped lenses, the one they are solved on, holds without folding;
-  // the last frame's mesh, moved, where the lenses only moved.
   MeshMemo* memo = cache ? &cache->mesh : nullptr;
   if (memo && moved_only(memo->lenses, out)) {
     if (std::optional<Grid> moved = moved_grid(*memo, out, box)) {
@@ -451,17 +516,18 @@ LensResult GeometricLens::calibrated(const std::vector<Lens>& lenses, const Plan
 }
 
 LensResult GeometricLens::solve(const std::vector<Lens>& asked, const SolveControl& control) const {
-  std::vector<double> fits;
+  LensResult fit;
   Grid grid;
   Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = fitted(asked, fits, grid, box);
+  const std::vector<Lens> lenses = fitted(asked, fit, grid, box);
   std::vector<double> h;
   const LensModel model = model_for(lenses);
   for (const Lens& lens : lenses)
     h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, grid.cell));
   SolveCache cache;
   LensResult r = calibrated(lenses, solved_mesh(grid, lenses, h), box, h, cache, control);
-  r.zoom_fits = std::move(fits);
+  r.zoom_fits = std::move(fit.zoom_fits);
+  r.zoom_fit_reasons = std::move(fit.zoom_fit_reasons);
   return r;
 }
 

@@ -45,10 +45,10 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
   State& s = *state_;
   SolveCache& cache = s.caches[draft ? 1 : 0];
   const GeometricLens& solver = draft && draft_lens_ ? *draft_lens_ : lens_;
-  std::vector<double> fits;
+  LensResult fit;
   Grid grid;
   Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = solver.fitted(asked, fits, grid, box, &cache, draft);
+  const std::vector<Lens> lenses = solver.fitted(asked, fit, grid, box, &cache, draft);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const LensModel model = solver.model_for(lenses);
@@ -76,7 +76,8 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
     cache.predicted.resize(0, 2);
     throw;
   }
-  r.zoom_fits = std::move(fits);
+  r.zoom_fits = std::move(fit.zoom_fits);
+  r.zoom_fit_reasons = std::move(fit.zoom_fit_reasons);
   r.draft = draft &&
             (draft_lens_ || (r.model == LensModel::kFocus && solver.options().mesh_tolerance > 0));
   s.lenses = lenses;

@@ -163,7 +163,8 @@ TEST(Comparison, PolygonsAloneAndOverlappingCirclesRefused) {
 }
 
 // The JSON parses, holds one entry per method in order, and each lens is the object
-// run_stats_json writes (the same keys, but the solve's `height` and `zoom_fit`).
+// run_stats_json writes (the same keys, but the solve's `height`, `zoom_fit` and
+// `zoom_fit_reason`).
 TEST(ComparisonReport, JsonHasOneEntryPerMethodAndTheLensObjectOfRunStats) {
   const Comparison& c = circle_comparison();
   const nlohmann::json j = nlohmann::json::parse(comparison_json(c));
@@ -174,6 +175,7 @@ TEST(ComparisonReport, JsonHasOneEntryPerMethodAndTheLensObjectOfRunStats) {
   std::set<std::string> lens_keys = keys(stats.at("lenses")[0]);
   lens_keys.erase("height");
   lens_keys.erase("zoom_fit");
+  lens_keys.erase("zoom_fit_reason");
   for (size_t i = 0; i < c.methods.size(); ++i) {
     const nlohmann::json& m = methods[i];
     SCOPED_TRACE(c.methods[i].name);
@@ -190,6 +192,7 @@ TEST(ComparisonReport, JsonHasOneEntryPerMethodAndTheLensObjectOfRunStats) {
     nlohmann::json lens = stats.at("lenses")[0];
     lens.erase("height");
     lens.erase("zoom_fit");
+    lens.erase("zoom_fit_reason");
     return lens;
   }());
 }

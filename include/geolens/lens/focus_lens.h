@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geolens/geometry/conforming_mesh.h"
@@ -51,22 +52,30 @@ double radial_distortion_bound(double zoom, double ratio);
 
 /// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
 /// magnified together, as one focus: the union of their regions, at the largest of their zooms,
-/// about the centre of their peaks; its reach is the farthest point of any of the regions from
-/// there, its footprint the largest ratio of theirs. A lens alone is a group of one. Footprints
-/// do not overlap: where the disks of radius reach + margin of two groups would, both margins
-/// shrink by the same factor until they touch, so no lens moves another (and a lens with a
-/// near neighbour fits a lower zoom).
+/// about the centre of their peaks, or where the regions cross a side of the width x height image
+/// (pixels), about the point of that side nearest it (so the side stays); its reach is the
+/// farthest point of any of the regions from the centre, its footprint the largest ratio of
+/// theirs. A lens alone is a group of one. Footprints do not overlap: where the disks of radius
+/// reach + margin of two groups would, both margins shrink by the same factor until they touch,
+/// so no lens moves another (and a lens with a near neighbour fits a lower zoom).
 struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
+  Eigen::Vector2d fixed;       ///< the point the focus is magnified about, pixels
   double reach = 0;            ///< pixels
-  double margin = 0;           ///< the footprint lies in the disk of radius reach + margin, pixels
-  double log_zoom = 0;         ///< the focus's
+  /// The footprint (the focus scaled by the ratio about `fixed`) lies in the disk of radius
+  /// reach + margin about the centre, pixels.
+  double margin = 0;
+  double log_zoom = 0;  ///< the focus's
+  /// A lens of the nearest group whose footprint made this group's margin shrink (the most), -1
+  /// if none did.
+  int neighbour = -1;
 };
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
-                                     const std::vector<double>& log_zooms);
+                                     const std::vector<double>& log_zooms, double width,
+                                     double height);
 /// The same at the lenses' own zooms.
-std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
+std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double width, double height);
 
 /// Whether the image border (width x height, pixels) is too far from `group`'s footprint to round
 /// its edge anywhere: 1.3 times the group's disk (radius reach + margin) from its centre or more.
@@ -74,13 +83,20 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses);
 bool footprint_clear_of_border(const FocusGroup& group, double width, double height);
 
 /// Per lens, the largest zoom at which its group fits where it is on a width x height image
-/// (pixels), on a mesh of cell side `cell`: the footprint's edge along every ray from the
-/// group's centre (the image border where nearer), less two cells for the mesh to bend in, must
-/// lie far enough beyond the focus that the radial bound's distortion stays at most 4,
-/// zoom <= ((edge - 2 cell) / inner)^0.8. A region over an image side is magnified about a point
-/// on that side (so the side stays where it is), which shifts the magnified focus inward.
+/// (pixels), on a mesh of cell side `cell`, with the footprints the lenses have: the footprint's
+/// edge along every ray from the group's centre (the image border where nearer), less two cells
+/// for the mesh to bend in, must lie far enough beyond the focus that the radial bound's
+/// distortion stays at most 4, zoom <= ((edge - 2 cell) / inner)^0.8. A region over an image side
+/// is magnified about a point on that side (so the side stays where it is), which shifts the
+/// magnified focus inward. With `reasons`, per lens what bounds the edge on the ray that limits
+/// it, and a remedy: "the image's top side, 12 px from the region (...)", "lens 2 beside it
+/// (...)" (its footprint stops where a neighbour's begins) or "its footprint (...)" (its ratio).
+/// GeometricLens solves each lens at
+/// the largest zoom up to the one asked at which this holds with the lens's own footprint at
+/// that zoom (a lens asking for more gets no less, and one that fits gets exactly its zoom).
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
-                                  double width, double height);
+                                  double width, double height,
+                                  std::vector<std::string>* reasons = nullptr);
 
 /// What the focus lens asks of the flattening at the vertices `V` (#V x 2, pixels) of a mesh of
 /// cell side `cell` (pixels) on a width x height image, lens i with log zoom `log_zooms[i]`

@@ -96,9 +96,13 @@ struct LensResult : Magnification {
   FlattenResult flattening;            ///< iterations and energies of the final solve
   /// per lens: calibrated centre height h0, pixels; for kFocus the log zoom of its focus
   std::vector<double> heights;
-  /// per lens (kFocus): the largest zoom that fits where the lens is (fitting_zoom in
-  /// focus_lens.h); a lens that asks for more is solved at this zoom. Empty for other models.
+  /// per lens (kFocus): the zoom it was solved at, the one asked if that fits where the lens is,
+  /// else the largest that does (fitting_zooms in focus_lens.h, and what its mesh holds without
+  /// a fold). Empty for other models.
   std::vector<double> zoom_fits;
+  /// per lens (kFocus): what limits its zoom where it gets at least 0.1 % less than asked (the
+  /// image side, another lens, its footprint or the mesh, as fitting_zooms words it), else empty.
+  std::vector<std::string> zoom_fit_reasons;
   /// The cotan texture map folded and was redone with non-negative weights (cotan+).
   bool texture_fallback = false;
   int solves = 0;  ///< full solves made by the calibration
@@ -149,12 +153,17 @@ class GeometricLens {
                                  Eigen::AlignedBox2d& box) const;
   LensModel model_for(const std::vector<Lens>& lenses) const;
   // The lenses to solve (validated), and the grid (over `box`) to solve them on. kFocus: each
-  // zoom lowered to the largest that fits (footprints kept), those zooms in `fits`; other
-  // models: the lenses as they are. With a cache, kFocus reuses its last mesh for lenses that
-  // only moved (moved_grid) and keeps the mesh it makes. A draft's mesh is not refined.
-  std::vector<Lens> fitted(const std::vector<Lens>& lenses, std::vector<double>& fits, Grid& grid,
+  // zoom lowered to the largest that fits, those zooms in `r.zoom_fits` and why in
+  // `r.zoom_fit_reasons`; other models: the lenses as they are. With a cache, kFocus reuses its
+  // last mesh for lenses that only moved (moved_grid) and keeps the mesh it makes. A draft's mesh
+  // is not refined.
+  std::vector<Lens> fitted(const std::vector<Lens>& lenses, LensResult& r, Grid& grid,
                            Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
                            bool draft = false) const;
+  // kFocus: the lenses at the largest zooms up to theirs that fit where they are, their
+  // footprints at those zooms (fitting_zooms), with what limits each in `reasons`.
+  std::vector<Lens> fitting(const std::vector<Lens>& lenses,
+                            std::vector<std::string>& reasons) const;
   // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
   PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
                          const std::vector<double>& heights) const;
