@@ -156,8 +156,7 @@ void bind_results(py::module_& m) {
           "focus model, per lens: the zoom it was solved at, the one asked where that fits, else "
           "the largest that does (empty otherwise)")
       .def_property_readonly(
-          "zoom_fit_reasons",
-          [](const LensSolveResult& r) { return r.result.zoom_fit_reasons; },
+          "zoom_fit_reasons", [](const LensSolveResult& r) { return r.result.zoom_fit_reasons; },
           "focus model, per lens: what limits its zoom where it gets at least 0.1 % less than "
           "asked, else '' (empty otherwise)")
       .def_property_readonly(

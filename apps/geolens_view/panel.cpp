@@ -129,7 +129,8 @@ void lens_table(Viewer& viewer) {
   // Why a lens is built at less than it asks, as the CLI's warning says it.
   const std::vector<std::string>& reasons = viewer.frame().fit_reasons;
   for (size_t i = 0; i < reasons.size(); ++i)
-    if (!reasons[i].empty()) ImGui::TextWrapped("lens %zu: limited by %s", i + 1, reasons[i].c_str());
+    if (!reasons[i].empty())
+      ImGui::TextWrapped("lens %zu: limited by %s", i + 1, reasons[i].c_str());
   if (const std::optional<size_t> s = viewer.selected(); s && *s < viewer.lenses().size()) {
     float zoom = float(viewer.lenses()[*s].zoom);
     if (ImGui::SliderFloat("zoom", &zoom, 1.0f, 8.0f, "%.2f")) viewer.set_zoom(*s, zoom);
