@@ -99,7 +99,7 @@ def test_stats_have_the_keys_and_figures_of_the_clis(solved, run_cli):
     cli = run_cli("--lens", "circle:500,500,100:2")
     assert cli.returncode == 0, cli.stderr
     stats = solved.stats
-#"source" says what file the CLI read; a solve from Python reads none.
+    # "source" says what file the CLI read; a solve from Python reads none.
     assert stats.keys() == cli.stats.keys() - {"source"}
     assert stats["timings_ms"].keys() == cli.stats["timings_ms"].keys()
     assert stats["lenses"][0].keys() == cli.stats["lenses"][0].keys()
@@ -190,8 +190,7 @@ def test_solves_in_threads_match_the_same_solves_in_turn():
 
 def test_a_solve_in_a_thread_lets_python_run():
     lens = geolens.GeometricLens(1024, 1024, mesh=400, threads=1)
-    span, result = {}, {
-}
+    span, result = {}, {}
 
     def solve():
         span["start"] = time.perf_counter()
