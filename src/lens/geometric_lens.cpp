@@ -276,10 +276,15 @@ std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
     if (fit) break;
   }
   // What limits each lens that gets less than asked: the fit just above its zoom.
+  reasons.assign(out.size(), "");
   std::vector<Lens> above = out;
-  for (size_t k = 0; k < out.size(); ++k)
-    if (short_of(out[k].zoom, lenses[k].zoom, kShortfall))
-      above[k].zoom = std::min(lenses[k].zoom, out[k].zoom * (1 + kShortfall));
+  bool short_any = false;
+  for (size_t k = 0; k < out.size(); ++k) {
+    if (!short_of(out[k].zoom, lenses[k].zoom, kShortfall)) continue;
+    above[k].zoom = std::min(lenses[k].zoom, out[k].zoom * (1 + kShortfall));
+    short_any = true;
+  }
+  if (!short_any) return out;
   fits_of(above, &reasons);
   for (size_t k = 0; k < out.size(); ++k)
     if (!short_of(out[k].zoom, lenses[k].zoom, kShortfall)) reasons[k].clear();
