@@ -360,9 +360,13 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
             if (u[size_t(j)] == b && u[size_t((j + 1) % 3)] == a) g = h, y = u[size_t((j + 2) % 3)];
         }
         if (g < 0 || angle(x, a, b) + angle(y, a, b) <= std::numbers::pi * (1 + 1e-9)) continue;
-        // The quad a, y, b, x: its diagonal x - y, if both triangles keep the orientation.
+        // The quad a, y, b, x: its diagonal x - y, if both triangles keep the orientation (the
+        // neighbour's, where f has none: x on a - b, a triangle of three points of a straight
+        // curve, which the flip removes while keeping the curve's edges a - x and x - b).
         const Triangle first = {a, y, x}, second = {y, b, x};
-        const double sign = w.area2(t);
+        const bool flat =
+            std::abs(w.area2(t)) <= 1e-12 * (w.V[size_t(a)] - w.V[size_t(b)]).squaredNorm();
+        const double sign = flat ? w.area2(w.F[size_t(g)]) : w.area2(t);
         if (!(w.area2(first) * sign > 0 && w.area2(second) * sign > 0)) continue;
         auto smallest = [&](const Triangle& u) {
           return std::min(
@@ -373,7 +377,7 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
         if ((apex[size_t(a)] && angle(a, y, x) > kMaxApexAngle * (1 + 1e-9)) ||
             (apex[size_t(b)] && angle(b, y, x) > kMaxApexAngle * (1 + 1e-9)))
           continue;
-        if (along_curve(w, curves, a, b) || w.sides[size_t(a)] || w.sides[size_t(b)] ||
+        if ((!flat && along_curve(w, curves, a, b)) || w.sides[size_t(a)] || w.sides[size_t(b)] ||
             w.sides[size_t(x)] || w.sides[size_t(y)])
           continue;
         w.set_triangle(f, first);

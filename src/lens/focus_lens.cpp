@@ -179,14 +179,40 @@ double turns(const Eigen::Vector2d& w) {
   return t < 1 ? t : 0.0;
 }
 
+// (1 - e^-x) / x, 1 at x = 0: the ring's profile integrals below without their removable
+// singularity.
+double one_minus_exp_over(double x) {
+  return std::abs(x) < 1e-12 ? 1 - 0.5 * x : -std::expm1(-x) / x;
+}
+
+// The ring's radial to tangential scale along a ray where the footprint's edge is e^lambda times
+// the focus's extent, at log zoom L, with the magnified focus slid by `along` pixels along the
+// ray (negative: back towards the centre) and the edge `edge` pixels from the centre: the power
+// law's k = 1 - L / lambda, less along / (edge phi), phi = (1 - e^-(k lambda)) / k (see
+// Ring::moved). It is constant along the ray.
+double radial_ratio(double lambda, double log_zoom, double along, double edge) {
+  const double x = lambda - log_zoom;  // k lambda
+  const double k = lambda > 0 ? x / lambda : 1.0;
+  if (along == 0) return k;
+  return k - along / (edge * lambda * one_minus_exp_over(x));
+}
+
 // One focus group's ring about `centre` (the group's, or a point on the image side its regions
 // cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
 // smooth envelope of the farthest point within `near` of a region) and the footprint's edge
 // lies at edge(u): the focus scaled by the footprint ratio, inside the group's disk, and short
-// of the image border where that is nearer.
+// of the image border where that is nearer. Where the ring about the group's centre has too
+// little room on the rays towards a side, the magnified focus slides away from it (least_slide).
 struct Ring {
   static constexpr int kBins = 360;  // rays on which inner is found, interpolated between
+  static constexpr int kRays = 720;  // rays on which the room is measured
+  // The least ratio of the ring's radial to its tangential scale a fitting lens has on any ray:
+  // a distortion of 4 (the radial bound's k at zoom = (edge / inner)^0.8).
+  static constexpr double kLeastRadial = 0.2;
   Eigen::Vector2d centre, disk_centre;
+  // The magnified focus's slide per unit of zoom - 1, pixels: the focus is magnified about
+  // centre - pull (0 unless it slides).
+  Eigen::Vector2d pull = Eigen::Vector2d::Zero();
   double disk_radius, ratio, near, cell, width, height, margin = 0;
   std::vector<double> inner_;          // per bin, or one value for a circle about its centre
   std::vector<RingDistance> regions_;  // the group's
@@ -205,6 +231,74 @@ struct Ring {
     // (A mesh that follows the regions resolves them: its band is a millionth of a cell.)
     for (size_t k : group.lenses)
       if (lenses[k].region.size() < 3 * cell && near > 0.5 * cell) margin = 2 * cell;
+    if (group.slides && group.log_zoom > 0)
+      pull = least_slide(group.log_zoom) / std::expm1(group.log_zoom);
+  }
+
+  // The room on the ray along u: the focus's extent and the footprint's edge less `margin`, and
+  // whether the ray stays in the image.
+  struct Ray {
+    double inner, edge;
+    bool in_image;
+  };
+  Ray ray(const Eigen::Vector2d& u) const {
+    const double inner_u = inner(u);
+    return {inner_u, edge(u, inner_u) - margin, ray_exits(centre, u, width, height).minCoeff() > 0};
+  }
+  static Eigen::Vector2d ray_direction(int k) {
+    const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
+    return Eigen::Vector2d(std::cos(a), std::sin(a));
+  }
+
+  // The least slide v of the magnified focus (pixels) at `log_zoom` with which the ring's
+  // radial to tangential scale is at least kLeastRadial on every ray: v.u <= (k - kLeastRadial)
+  // edge phi (radial_ratio). 0 where the ring about the centre has that room (the lens fits
+  // unmoved); else the point nearest 0 of that intersection of half-planes, by Newton's method
+  // on |v|^2 / 2 plus a stiff quadratic penalty on the violations (strictly convex, so the slide
+  // is a continuous function of the lens's place, size and zoom). Where no slide gives the room
+  // (a side on both sides), the penalty's minimum: min_ratio then tells the zoom that fits.
+  Eigen::Vector2d least_slide(double log_zoom) const {
+    std::vector<std::pair<Eigen::Vector2d, double>> cuts;  // (u, the most v.u may be)
+    bool needed = false;
+    for (int k = 0; k < kRays; ++k) {
+      const Eigen::Vector2d u = ray_direction(k);
+      const Ray r = ray(u);
+      if (!r.in_image || !(r.edge > 0)) continue;
+      const double lambda = std::log(r.edge / r.inner), x = lambda - log_zoom;
+      // (k - kLeastRadial) edge phi = edge ((1 - e^-x) - kLeastRadial lambda (1 - e^-x) / x),
+      // a hair inside so the penalty's slight violation still has the room.
+      const double most =
+          r.edge * (-std::expm1(-x) - kLeastRadial * lambda * one_minus_exp_over(x)) -
+          1e-6 * r.inner;
+      cuts.emplace_back(u, most);
+      needed = needed || most < 0;
+    }
+    Eigen::Vector2d v = Eigen::Vector2d::Zero();
+    if (!needed) return v;
+    constexpr double kStiffness = 1e8;
+    auto cost = [&](const Eigen::Vector2d& at) {
+      double c = 0.5 * at.squaredNorm();
+      for (const auto& [u, most] : cuts)
+        c += 0.5 * kStiffness * std::pow(std::max(u.dot(at) - most, 0.0), 2);
+      return c;
+    };
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      Eigen::Matrix2d hessian = Eigen::Matrix2d::Identity();
+      Eigen::Vector2d gradient = v;
+      for (const auto& [u, most] : cuts) {
+        const double over = u.dot(v) - most;
+        if (over <= 0) continue;
+        hessian += kStiffness * u * u.transpose();
+        gradient += kStiffness * over * u;
+      }
+      const Eigen::Vector2d step = hessian.ldlt().solve(gradient);
+      double t = 1;
+      const double before = cost(v);
+      while (t > 1e-9 && cost(v - t * step) > before) t *= 0.5;
+      v -= t * step;
+      if (t * step.norm() < 1e-9 * (1 + v.norm())) break;
+    }
+    return v;
   }
 
   // The smallest ratio, over the rays into the image, of the footprint's edge, less `margin`,
@@ -219,22 +313,29 @@ struct Ring {
     enum class By { kFootprint, kDisk, kSide } by = By::kFootprint;
     Eigen::Vector2d u = Eigen::Vector2d::UnitX();  // the ray
   };
-  Room min_ratio() const {
+  // Where the focus slides at log zoom L, a ray's ratio is the one whose radial bound has the
+  // slid ring's radial to tangential scale there: e^(L / (1 - radial_ratio)).
+  Room min_ratio(double log_zoom) const {
     Room room;
-    constexpr int kRays = 720;
+    const Eigen::Vector2d slide = std::expm1(log_zoom) * pull;
     for (int k = 0; k < kRays; ++k) {
-      const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
-      const Eigen::Vector2d u(std::cos(a), std::sin(a));
-      const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
-      if (exits.minCoeff() <= 0) continue;  // leaves at once
-      const double inner_u = inner(u), r = (edge(u, inner_u) - margin) / inner_u;
+      const Eigen::Vector2d u = ray_direction(k);
+      const Ray ray_u = ray(u);
+      if (!ray_u.in_image) continue;  // leaves at once
+      double r = ray_u.edge / ray_u.inner;
+      if (slide != Eigen::Vector2d::Zero() && r > 1 + 1e-9) {
+        const double radial = radial_ratio(std::log(r), log_zoom, slide.dot(u), ray_u.edge);
+        r = radial < 1 ? std::exp(log_zoom / (1 - radial))
+                       : std::numeric_limits<double>::infinity();
+      }
       if (!(r < room.ratio)) continue;
       room.ratio = r;
       room.u = u;
+      const Eigen::Vector2d exits = ray_exits(centre, u, width, height);
       const double disk = disk_distance(u);
-      room.by = exits.minCoeff() < std::min(ratio * inner_u, disk) ? Room::By::kSide
-                : disk < ratio * inner_u                           ? Room::By::kDisk
-                                                                   : Room::By::kFootprint;
+      room.by = exits.minCoeff() < std::min(ratio * ray_u.inner, disk) ? Room::By::kSide
+                : disk < ratio * ray_u.inner                           ? Room::By::kDisk
+                                                                       : Room::By::kFootprint;
     }
     return room;
   }
@@ -386,10 +487,28 @@ struct Ring {
 
   // Where the ring at `log_zoom` moves the point at `p` (in the footprint, not the centre):
   // centre + g t u, ln g = log_zoom ln(edge / s) / ln(edge / inner). s >= t and ds/dt <= 1 along
-  // the ray keep g t increasing (no fold) while edge > zoom inner.
+  // the ray keep g t increasing (no fold) while edge > zoom inner. A sliding focus adds
+  // w(s) v, v = (zoom - 1) pull, w = (1 - (s / edge)^k) / (1 - (inner / edge)^k) with the power
+  // law's k: 1 in the focus (magnified about centre - pull), 0 at the edge, and of the same shape
+  // as g s, so the ring's radial to tangential scale stays radial_ratio along the ray (no fold
+  // while the slid focus ends inside the edge, v.u < edge - zoom inner).
   Eigen::Vector2d moved(const Place& p, double log_zoom) const {
-    const double g = std::exp(log_zoom * std::log(p.edge / p.s) / std::log(p.edge / p.inner));
-    return centre + g * p.t * p.u;
+    const double lambda = std::log(p.edge / p.inner), sigma = std::log(p.edge / p.s);
+    const Eigen::Vector2d ringed = centre + std::exp(log_zoom * sigma / lambda) * p.t * p.u;
+    if (pull == Eigen::Vector2d::Zero()) return ringed;
+    const double k = 1 - log_zoom / lambda;
+    const double w =
+        sigma * one_minus_exp_over(k * sigma) / (lambda * one_minus_exp_over(k * lambda));
+    return ringed + w * std::expm1(log_zoom) * pull;
+  }
+
+  // Whether the ring moves p, in its footprint: not the centre, unless the focus slides.
+  bool moves(const Place& p) const { return p.t > 0 || pull != Eigen::Vector2d::Zero(); }
+
+  // The radial to tangential scale of the ring at `log_zoom` along p's ray.
+  double radial(const Place& p, double log_zoom) const {
+    const double lambda = std::log(std::max(p.edge / p.inner, 1 + 1e-9));
+    return radial_ratio(lambda, log_zoom, std::expm1(log_zoom) * pull.dot(p.u), p.edge);
   }
 
   // The footprint's edge is where s reaches edge along a ray: level = s - edge, negative inside,
@@ -418,6 +537,26 @@ constexpr std::array<double, 5> kZoomFractions = {1.0, 0.8, 0.6, 0.4, 0.2};
 
 // The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
 constexpr double kFitExponent = 0.8;
+
+// The point a region with bounds `bounds` and centre `centre` near the sides of a width x height
+// image is magnified about, less the centre (pixels), as focus_groups estimates it for the
+// footprint: per side, the side's point nearest the centre, weighted by how much of the gap the
+// unmoved ring needs at log zoom L is missing (1 - gap / (extent (zoom^1.25 - 1)), in [0, 1],
+// the extent from the centre to the bounds' side; zoom^1.25 makes the radial bound's
+// distortion 4): 0 far from every side, the side's point where the region touches or crosses
+// it. Continuous in the lens's place and zoom.
+Eigen::Vector2d estimated_fixed_offset(const Eigen::Vector2d& centre,
+                                       const Eigen::AlignedBox2d& bounds, double log_zoom,
+                                       double width, double height) {
+  const double need = std::expm1(log_zoom / kFitExponent);
+  auto towards = [&](double to_side, double extent) {
+    if (!(need > 0 && extent > 0)) return to_side <= extent ? to_side : 0.0;
+    return to_side * std::clamp(1 - (to_side - extent) / (extent * need), 0.0, 1.0);
+  };
+  const Eigen::Vector2d low = centre - bounds.min(), high = bounds.max() - centre;
+  return Eigen::Vector2d(towards(width - centre.x(), high.x()) - towards(centre.x(), low.x()),
+                         towards(height - centre.y(), high.y()) - towards(centre.y(), low.y()));
+}
 
 }  // namespace
 
@@ -473,24 +612,40 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
     if (bounds.max().x() >= width) g.fixed.x() = width;
     if (bounds.min().y() <= 0) g.fixed.y() = 0;
     if (bounds.max().y() >= height) g.fixed.y() = height;
+    g.on_side = !(bounds.min().x() > 0 && bounds.min().y() > 0 && bounds.max().x() < width &&
+                  bounds.max().y() < height);
+    g.slides = !g.on_side && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
+      return lenses[k].region.circle().has_value();
+    });
     // The footprint, the focus scaled by the ratio about that point, lies within the disk of
-    // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre.
-    g.margin = (ratio - 1) * (g.reach + (g.fixed - g.centre).norm());
+    // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
+    // side slides away from it (Ring::least_slide), magnified about a point between the centre
+    // and that side; its footprint grows the same way, with the point estimated_fixed_offset puts
+    // there (the side's point where the region touches it, so the footprint does not jump).
+    const Eigen::Vector2d offset =
+        g.slides ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
+                 : Eigen::Vector2d(g.fixed - g.centre);
+    g.margin = (ratio - 1) * (g.reach + offset.norm());
   }
   // Footprints stop where they would meet a neighbour's: where the disks of radius reach +
-  // margin of two groups overlap, both margins shrink by the same factor until the disks touch
-  // (their foci do not overlap, so there is room), and no lens pushes another.
+  // margin of two groups overlap, the room between their foci (they do not overlap) is shared
+  // so that the smaller margin keeps what it has up to half the room and the larger takes the
+  // rest (a wide footprint, of a lens near a side, does not take a small one's room), and no
+  // lens pushes another.
   std::vector<double> shrunk(groups.size(), 1.0);  // the most each group's margin was shrunk by
   for (size_t i = 0; i < groups.size(); ++i) {
     for (size_t j = i + 1; j < groups.size(); ++j) {
       FocusGroup &a = groups[i], &b = groups[j];
-      const double room = (a.centre - b.centre).norm() - a.reach - b.reach;
-      if (a.margin + b.margin <= std::max(room, 0.0)) continue;
-      const double scale = std::max(room, 0.0) / (a.margin + b.margin);
-      a.margin *= scale;
-      b.margin *= scale;
-      if (scale < shrunk[i]) shrunk[i] = scale, a.neighbour = int(b.lenses.front());
-      if (scale < shrunk[j]) shrunk[j] = scale, b.neighbour = int(a.lenses.front());
+      const double room = std::max((a.centre - b.centre).norm() - a.reach - b.reach, 0.0);
+      if (a.margin + b.margin <= room) continue;
+      const double was_a = a.margin, was_b = b.margin;
+      const double small = std::min(std::min(was_a, was_b), 0.5 * room);
+      a.margin = was_a <= was_b ? small : room - small;
+      b.margin = was_a <= was_b ? room - small : small;
+      const double scale_a = was_a > 0 ? a.margin / was_a : 1.0;
+      const double scale_b = was_b > 0 ? b.margin / was_b : 1.0;
+      if (scale_a < shrunk[i]) shrunk[i] = scale_a, a.neighbour = int(b.lenses.front());
+      if (scale_b < shrunk[j]) shrunk[j] = scale_b, b.neighbour = int(a.lenses.front());
     }
   }
   return groups;
@@ -524,7 +679,7 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
   if (reasons) reasons->assign(lenses.size(), "");
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     const Ring ring(group, lenses, cell, band, width, height);
-    const Ring::Room room = ring.min_ratio();
+    const Ring::Room room = ring.min_ratio(group.log_zoom);
     for (size_t k : group.lenses)
       fits[k] = room.ratio > 1 ? std::pow(room.ratio, kFitExponent) : 1.0;
     if (!reasons) continue;
@@ -598,13 +753,13 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
         out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
       }
       if (!c.pinned[i]) {
-        // The radial bound along this vertex's ray of its ring, with the slack; a ray too short
-        // for the zoom has no radial solution: the bound then only keeps the context from
-        // folding over itself (at most 20, a sliver).
-        const double ratio = std::max(owner_place.edge / owner_place.inner, 1.0 + 1e-9);
-        const double k_power = 1 - out.groups[owner].log_zoom / std::log(ratio);
-        c.anisotropy(Eigen::Index(i)) = std::min(slack / std::max(k_power, 1e-9), 20.0);
-        if (out.groups[owner].log_zoom > 0 && owner_place.t > 0)
+        // The radial bound along this vertex's ray of its ring (the ratio of its radial to its
+        // tangential scale, or its inverse where the slid ring stretches along the ray), with
+        // the slack; a ray too short for the zoom has no radial solution: the bound then only
+        // keeps the context from folding over itself (at most 20, a sliver).
+        const double k = rings[owner].radial(owner_place, out.groups[owner].log_zoom);
+        c.anisotropy(Eigen::Index(i)) = std::min(slack * std::max(1 / std::max(k, 1e-9), k), 20.0);
+        if (out.groups[owner].log_zoom > 0 && rings[owner].moves(owner_place))
           out.start.row(Eigen::Index(i)) =
               rings[owner].moved(owner_place, out.groups[owner].log_zoom).transpose();
       }
@@ -622,7 +777,7 @@ void apply_ring(Eigen::MatrixX2d& X, const Ring& ring, double log_zoom, ThreadPo
   parallel_for(pool, size_t(X.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
       const Ring::Place p = ring.place(X.row(i).transpose());
-      if (p.t > 0 && p.in_footprint()) X.row(i) = ring.moved(p, log_zoom).transpose();
+      if (p.in_footprint() && ring.moves(p)) X.row(i) = ring.moved(p, log_zoom).transpose();
     }
   });
 }

@@ -55,14 +55,23 @@ double radial_distortion_bound(double zoom, double ratio);
 /// about the centre of their peaks, or where the regions cross a side of the width x height image
 /// (pixels), about the point of that side nearest it (so the side stays); its reach is the
 /// farthest point of any of the regions from the centre, its footprint the largest ratio of
-/// theirs. A lens alone is a group of one. Footprints do not overlap: where the disks of radius
-/// reach + margin of two groups would, both margins shrink by the same factor until they touch,
-/// so no lens moves another (and a lens with a near neighbour fits a lower zoom).
+/// theirs. A lens alone is a group of one. A group of circles near a side (`slides`) has a
+/// footprint grown as if it were magnified about a point between its centre and the side, the
+/// side's point where it touches it (so the footprint does not jump there). Footprints do not
+/// overlap: where the disks of radius reach + margin of two groups would, the room between their
+/// foci is shared, the smaller margin kept up to half of it and the larger taking the rest, so no
+/// lens moves another (and a lens with a near neighbour fits a lower zoom).
 struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
-  Eigen::Vector2d fixed;       ///< the point the focus is magnified about, pixels
-  double reach = 0;            ///< pixels
+  /// The point the ring is about, pixels: the centre, or where a region crosses an image side
+  /// the point of that side nearest it (the focus is magnified about it, so the side stays).
+  Eigen::Vector2d fixed;
+  bool on_side = false;  ///< a region crosses (or touches) an image side
+  /// The magnified focus may slide away from the sides, where its ring about the centre has too
+  /// little room (focus_start): a group of circles off every side (docs/design.md, "Sliding").
+  bool slides = false;
+  double reach = 0;  ///< pixels
   /// The footprint (the focus scaled by the ratio about `fixed`) lies in the disk of radius
   /// reach + margin about the centre, pixels.
   double margin = 0;
@@ -88,7 +97,9 @@ bool footprint_clear_of_border(const FocusGroup& group, double width, double hei
 /// for the mesh to bend in, must lie far enough beyond the focus that the radial bound's
 /// distortion stays at most 4, zoom <= ((edge - 2 cell) / inner)^0.8. A region over an image side
 /// is magnified about a point on that side (so the side stays where it is), which shifts the
-/// magnified focus inward. With `reasons`, per lens what bounds the edge on the ray that limits
+/// magnified focus inward; a focus that slides (FocusGroup::slides) has its ring's radial to
+/// tangential scale, with the least slide that makes it at least 0.2 on every ray, at least 0.2
+/// (a distortion of 4). With `reasons`, per lens what bounds the edge on the ray that limits
 /// it, and a remedy: "the image's top side, 12 px from the region (...)", "lens 2 beside it
 /// (...)" (its footprint stops where a neighbour's begins) or "its footprint (...)" (its ratio).
 /// GeometricLens solves each lens at
@@ -152,7 +163,13 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// ln g = log_zoom ln(R / s) / ln(R / inner), s = max(t, inner + max(d - band, 0)). s >= t and
 /// ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle folds (in the
 /// continuum), the focus is magnified exactly, and the image border maps onto itself. For a
-/// circle this is the bound-reaching power ring. The groups are applied one after the other;
+/// circle this is the bound-reaching power ring. Where the ring has too little room on the rays
+/// towards a side (FocusGroup::slides), the magnified focus slides away from it by the least v
+/// that gives every ray a radial to tangential scale of at least 0.2: a point moves by w v more,
+/// w = (1 - (s / R)^k) / (1 - (inner / R)^k) with the ray's power law k = 1 - ln zoom / ln(R /
+/// inner) (1 in the focus, which is then magnified about c - v / (zoom - 1), 0 at the edge), which
+/// keeps that scale constant along each ray, k - v.u / (R (1 - (inner / R)^k) / k); the image
+/// border, beyond the edge, stays. The groups are applied one after the other;
 /// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
 /// corner, where the start has a cone that a wide triangle averages badly), the vertices of
 /// folded triangles outside the foci move to the mean of their neighbours, a few rounds.
