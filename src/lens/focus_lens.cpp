@@ -179,6 +179,9 @@ double turns(const Eigen::Vector2d& w) {
   return t < 1 ? t : 0.0;
 }
 
+// The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
+constexpr double kFitExponent = 0.8;
+
 // (1 - e^-x) / x, 1 at x = 0: the ring's profile integrals below without their removable
 // singularity.
 double one_minus_exp_over(double x) {
@@ -208,7 +211,7 @@ struct Ring {
   static constexpr int kRays = 720;  // rays on which the room is measured
   // The least ratio of the ring's radial to its tangential scale a fitting lens has on any ray:
   // a distortion of 4 (the radial bound's k at zoom = (edge / inner)^0.8).
-  static constexpr double kLeastRadial = 0.2;
+  static constexpr double kLeastRadial = 1 - kFitExponent;
   Eigen::Vector2d centre, disk_centre;
   // The magnified focus's slide per unit of zoom - 1, pixels: the focus is magnified about
   // centre - pull (0 unless it slides).
@@ -258,6 +261,13 @@ struct Ring {
   // is a continuous function of the lens's place, size and zoom). Where no slide gives the room
   // (a side on both sides), the penalty's minimum: min_ratio then tells the zoom that fits.
   Eigen::Vector2d least_slide(double log_zoom) const {
+    // A circle's ring whose edge the border does not round (its disk 1.3 times clear of it, as
+    // footprint_clear_of_border) has ratio all round: room without a slide where ratio^0.8 >= zoom.
+    const double clear = 1.3 * disk_radius;
+    if (inner_.size() == 1 && margin == 0 && centre.minCoeff() >= clear &&
+        width - centre.x() >= clear && height - centre.y() >= clear &&
+        kFitExponent * std::log(ratio) >= log_zoom)
+      return Eigen::Vector2d::Zero();
     std::vector<std::pair<Eigen::Vector2d, double>> cuts;  // (u, the most v.u may be)
     bool needed = false;
     for (int k = 0; k < kRays; ++k) {
@@ -534,9 +544,6 @@ struct Ring {
 // The fractions of a log zoom tried, in order, when a ring folds the mesh or its start is not
 // admissible.
 constexpr std::array<double, 5> kZoomFractions = {1.0, 0.8, 0.6, 0.4, 0.2};
-
-// The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
-constexpr double kFitExponent = 0.8;
 
 // The point a region with bounds `bounds` and centre `centre` near the sides of a width x height
 // image is magnified about, less the centre (pixels), as focus_groups estimates it for the
