@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "panel.h"
@@ -30,6 +32,7 @@ namespace {
 struct Args {
   std::string image, model = "focus", method = "geometric", split, script, screenshot, size;
   std::string frame, style, view, transfer;  // how a source file is opened
+  std::string frame_log;
   std::vector<std::string> lenses;
   int mesh = 100, frames = 2;
   bool stats = false, redraw = false;
@@ -89,6 +92,13 @@ int run(const Args& a) {
   require(a.script.empty() || !a.image.empty(), "--script", "needs an IMAGE");
   require(a.frames >= 1, "--frames", "must be >= 1, got " + std::to_string(a.frames));
   if (!a.screenshot.empty()) check_screenshot_path(a.screenshot, a.image, "--screenshot");
+  if (!a.frame_log.empty()) {
+    const std::filesystem::path parent = std::filesystem::path(a.frame_log).parent_path();
+    require(parent.empty() || std::filesystem::is_directory(parent), "--frame-log",
+            "the folder of '" + a.frame_log + "' does not exist");
+    require(a.image.empty() || !same_file(a.frame_log, a.image), "--frame-log",
+            "'" + a.frame_log + "' is the input image; it is never overwritten");
+  }
   const auto [width, height] =
       a.size.empty() ? std::pair{1280, 800} : parse_size(a.size, "--size", 64, 8192);
   SourceFileOptions source;
@@ -133,6 +143,9 @@ int run(const Args& a) {
   };
   std::array<Shown, WarpRenderer::kPanes> shown;
   std::vector<double> frame_ms, latency_ms, solve_ms;
+  // --frame-log: per frame that shows a new solve, per lens where it is, the zoom asked and the
+  // zoom it was solved at (written at exit).
+  std::string frame_log = "frame,lens,x,y,zoom_asked,zoom_got,draft\n";
   int frames_while_opening = 0;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
@@ -229,8 +242,20 @@ int run(const Args& a) {
           std::chrono::duration<double, std::milli>(now - viewer.frame_requested_at()).count());
       solve_ms.push_back(viewer.frame().solve_ms);
     }
+    if (!a.frame_log.empty() && fresh && viewer.frame().result) {
+      const SolvedFrame& solved = viewer.frame();
+      for (size_t k = 0; k < solved.lenses.size(); ++k) {
+        const Eigen::Vector2d p = solved.lenses[k].region.peak();
+        char row[160];
+        std::snprintf(row, sizeof row, "%d,%zu,%.17g,%.17g,%.17g,%.17g,%d\n", frame, k + 1, p.x(),
+                      p.y(), solved.lenses[k].zoom, solved.result->zoom_parameter.at(k),
+                      int(solved.result->draft));
+        frame_log += row;
+      }
+    }
     if (actions.quit || final) break;
   }
+  if (!a.frame_log.empty()) write_file(a.frame_log, frame_log);
   if (a.stats) {
     std::printf(
         "frames %zu: frame time median %.1f ms, p95 %.1f ms; move to shown (%zu frames shown) "
@@ -305,6 +330,9 @@ int main(int argc, char** argv) {
                  "draw --frames frames, wait for the solver, save the view to OUT.png and exit");
   app.add_option("--frames", a.frames, "frames drawn before --screenshot")->capture_default_str();
   app.add_option("--size", a.size, "window size WxH, pixels (default 1280x800)");
+  app.add_option("--frame-log", a.frame_log,
+                 "write FILE.csv: per frame that shows a new solve, per lens its place, the zoom "
+                 "asked and the zoom got");
   app.add_flag("--stats", a.stats,
                "print frame time and move-to-shown latency (median, p95) at exit");
   app.add_flag("--redraw", a.redraw,

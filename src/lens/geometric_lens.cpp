@@ -296,6 +296,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
                                         bool draft) const {
   r.zoom_fits.clear();
   r.zoom_fit_reasons.clear();
+  r.mesh_limited = false;
   for (const Lens& lens : lenses) validate_lens(lens, width_, height_);
   if (model_for(lenses) != LensModel::kFocus) {
     grid = base_grid(lenses, box);
@@ -310,6 +311,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
   auto lower = [&](const std::vector<double>& caps) {
     for (size_t k = 0; k < out.size(); ++k) {
       if (!short_of(caps[k], out[k].zoom, kRounding)) continue;
+      r.mesh_limited = true;
       out[k].footprint = footprint_ratio(out[k]);
       out[k].zoom = fits[k] = std::max(1.0, caps[k]);
       if (short_of(fits[k], lenses[k].zoom, kShortfall))
@@ -533,6 +535,7 @@ LensResult GeometricLens::solve(const std::vector<Lens>& asked, const SolveContr
   LensResult r = calibrated(lenses, solved_mesh(grid, lenses, h), box, h, cache, control);
   r.zoom_fits = std::move(fit.zoom_fits);
   r.zoom_fit_reasons = std::move(fit.zoom_fit_reasons);
+  r.mesh_limited = fit.mesh_limited;
   return r;
 }
 

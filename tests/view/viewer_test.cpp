@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "geolens/geometry/polygon.h"
 #include "geolens/io/image.h"
@@ -191,6 +192,61 @@ TEST_F(View, AScriptedDragMovesTheLens) {
   const Image placed = shot("placed.png", "--lens circle:220,100,24:2.5");
   EXPECT_GT(mean_difference(dragged, before), 5.0);
   EXPECT_LT(mean_difference(dragged, placed), 1.0);  // it ends where the drag ended
+}
+
+// The rows of a --frame-log: per frame that showed a new solve, per lens its place and zooms.
+struct FrameRow {
+  int frame = 0, lens = 0;
+  double x = 0, y = 0, asked = 0, got = 0;
+};
+
+std::vector<FrameRow> frame_rows(const std::string& text) {
+  std::vector<FrameRow> rows;
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    FrameRow r;
+    int draft = 0;
+    if (std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf,%lf,%d", &r.frame, &r.lens, &r.x, &r.y,
+                    &r.asked, &r.got, &draft) == 7)
+      rows.push_back(r);
+  }
+  return rows;
+}
+
+// Dragged frame by frame, 1 source pixel a frame, as the viewer shows it (drafts while the lens
+// moves, the full mesh once it rests): a circle dragged to and across the top side gets its zoom
+// in every frame shown (its magnified focus slides away from the side), and one dragged along
+// the side, 6 px below it, from near a corner to near the other, gets a zoom that changes by at
+// most 0.03 a pixel between frames and is its own where the corners leave it the room.
+TEST_F(View, ADragToAlongAndAcrossASideShowsAContinuousZoom) {
+  auto drag = [&](const std::string& name, const std::string& lens, const std::string& to,
+                  int steps) {
+    const std::string script = path(name + ".txt"), log = path(name + ".csv");
+    std::ofstream(script) << "drag 1 " << to << " " << steps << "\nframe " << steps + 10
+                          << " wait\nquit\n";
+    const ViewRun r = run(path("in.png") + " --size 320x240 --lens " + lens + " --script " +
+                          script + " --frame-log " + log);
+    EXPECT_EQ(r.code, 0) << r.err;
+    const std::vector<FrameRow> rows = frame_rows(read_text(log));
+    // Frames show a solve of their own as solves finish (fewer under a sanitizer's slow build).
+    EXPECT_GE(rows.size(), size_t(10));
+    return rows;
+  };
+  const std::vector<FrameRow> across = drag("across", "circle:160,120,24:3", "160 0", 120);
+  ASSERT_FALSE(across.empty());
+  EXPECT_EQ(across.back().y, 0);
+  for (const FrameRow& r : across) EXPECT_NEAR(r.got, 3, 1e-9) << "frame " << r.frame;
+  const std::vector<FrameRow> along = drag("along", "circle:60,30,24:3", "260 30", 200);
+  bool full = false;
+  for (size_t k = 1; k < along.size(); ++k) {
+    const FrameRow &a = along[k - 1], &b = along[k];
+    EXPECT_LE(std::abs(b.got - a.got), 0.03 * std::abs(b.x - a.x) + 1e-9) << "frame " << b.frame;
+    EXPECT_LE(b.got, b.asked);
+    full = full || b.got == b.asked;
+  }
+  EXPECT_TRUE(full);
 }
 
 TEST_F(View, TheMouseDragsZoomsAddsAndRemovesLenses) {
@@ -687,6 +743,12 @@ TEST_F(View, BadInputEndsWithOneLineAndAnExitCode) {
   // The input is never overwritten.
   const auto bytes = fs::file_size(path("in.png"));
   expect_refused(run(path("in.png") + size + "--screenshot " + path("in.png")), 2, "input image");
+  expect_refused(run(path("in.png") + size + "--screenshot " + path("o.png") + " --frame-log " +
+                     path("in.png")),
+                 2, "input image");
+  expect_refused(run(path("in.png") + size + "--screenshot " + path("o.png") + " --frame-log " +
+                     path("nowhere/f.csv")),
+                 2, "does not exist");
   EXPECT_EQ(fs::file_size(path("in.png")), bytes);
   expect_refused(run(path("in.png") + size + "--lens circle:500,1,2 --screenshot " + path("o.png")),
                  2, "circle:500,1,2");

@@ -103,6 +103,9 @@ struct LensResult : Magnification {
   /// per lens (kFocus): what limits its zoom where it gets at least 0.1 % less than asked (the
   /// image side, another lens, its footprint or the mesh, as fitting_zooms words it), else empty.
   std::vector<std::string> zoom_fit_reasons;
+  /// (kFocus) a lens got less than fits where it is because its ring folds the mesh
+  /// (unfolding_zooms): a LensSession then solves a draft as a full frame.
+  bool mesh_limited = false;
   /// The cotan texture map folded and was redone with non-negative weights (cotan+).
   bool texture_fallback = false;
   int solves = 0;  ///< full solves made by the calibration
