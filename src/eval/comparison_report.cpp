@@ -128,7 +128,8 @@ std::string sweep_json(const Sweep& sweep) {
                       {"uniformity", p.uniformity},
                       {"shape_max", p.shape_max},
                       {"footprint_radius", p.footprint_radius},
-                      {"bound", sweep.bound[i]}});
+                      {"bound", sweep.bound[i]},
+                      {"rim_bound", sweep.rim_bound[i]}});
     }
   }
   return nlohmann::json({{"points", rows}}).dump(2) + "\n";

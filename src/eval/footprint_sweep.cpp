@@ -52,6 +52,7 @@ Sweep footprint_sweep(double width, double height, const Lens& lens, LensOptions
     sweep.points.push_back(measure("geometric", ratio, solved.warp, swept));
     const double zoom = std::max(1.0, sweep.points.back().zoom);
     sweep.bound.push_back(zoom > 1 ? radial_distortion_bound(zoom, ratio) : 0.0);
+    sweep.rim_bound.push_back(zoom > 1 ? rim_distortion_bound(zoom, ratio) : 0.0);
     if (!lens.region.circle()) continue;  // the classic lenses are radial
     CircleLens target{lens.region.peak(), ratio * lens.region.reach(), zoom};
     target.focus_fraction = std::min(0.95, zoom / ratio);

@@ -200,6 +200,54 @@ double radial_ratio(double lambda, double log_zoom, double along, double edge) {
   return k - along / (edge * lambda * one_minus_exp_over(x));
 }
 
+// The rim's share of the distortion: the ring's profile may have up to 1 + kRimBudget times the
+// power law's 1 / k (a distortion within 1.3 times the radial bound) to end without a crease.
+constexpr double kRimBudget = 0.3;
+
+// The ring's profile along a ray whose power law has L / lambda = a (k = 1 - a): ln g = L P(x)
+// at x = ln(edge / s) / lambda, in [0, 1] from the footprint's edge to the focus, P(0) = 0,
+// P(1) = 1. The power law is P = x, whose slope 1 to the end is the rim's crease (a radial scale
+// of k inside the edge, 1 beyond). This P's slope rises from 0 at the edge as the smoothstep
+// m (3 y^2 - 2 y^3), y = x / delta, over the rim 0 <= x <= delta and is m beyond, with m = (1 +
+// b) / (1 + b a) and delta = 2 b (1 - a) / (1 + b), so that P(1) = 1: the ring's radial to
+// tangential scale 1 - a P' is 1 at the edge with slope 0 (the warp is C1, and its radial scale
+// C1, there) and at least 1 - m a = (1 - a) / (1 + b a) within, a distortion of (1 + b a) / k - 1,
+// within 1 + b times the power law's 1 / k - 1 (rim_distortion_bound). b is kRimBudget up to a =
+// 0.55 (a rim of 0.2 to 0.46 of x) and falls to 0 at a = 0.85, where the rim is the power law's:
+// near the fit's limit (a = 0.8, k = 0.2) the ring's compression next to a polygon's or a
+// mask's tip then stays the power law's (a rim there folded a mask's tip on a fine mesh), and a
+// ray a focus slides along may have a >= 1 (the slide gives it the room, Ring::moved), where a
+// rim of slope 0 would fold.
+struct Rim {
+  double a, b, m, delta;
+  // `shear`: a sliding focus's slide over the ray's room, |v| / (edge - zoom inner) (0 if none).
+  explicit Rim(double a_, double shear = 0) : a(a_) {
+    b = kRimBudget * std::clamp((0.85 - a) / 0.3, 0.0, 1.0) * std::clamp(1 - 2 * shear, 0.0, 1.0);
+    m = (1 + b) / (1 + b * a);
+    delta = 2 * b * (1 - a) / (1 + b);
+  }
+  // P(x).
+  double profile(double x) const {
+    if (x >= delta) return m * (x - 0.5 * delta);
+    const double y = x / delta;
+    return m * delta * y * y * y * (1 - 0.5 * y);
+  }
+  // The radial to tangential scale 1 - a P'(x) over the power law's 1 - a (1 where b = 0).
+  double relative_radial(double x) const {
+    if (b == 0) return 1;
+    const double y = std::min(x / delta, 1.0);
+    return (1 - a * m * y * y * (3 - 2 * y)) / (1 - a);
+  }
+  // (x - a P(x)) / (1 - a), 0 at the edge and 1 in the focus: the ring moves a point to g s =
+  // edge e^(-(lambda - L) Q(x)) along its ray (for a circle), and a slide's weight (Ring::moved)
+  // follows it.
+  double spread(double x) const {
+    if (x >= delta) return (x + b * a) / (1 + b * a);
+    const double y = x / delta;
+    return 2 * b * (y / (1 + b) - a * y * y * y * (1 - 0.5 * y) / (1 + b * a));
+  }
+};
+
 // One focus group's ring about `centre` (the group's, or a point on the image side its regions
 // cross). Along the ray with unit direction u the focus reaches inner(u) from the centre (a
 // smooth envelope of the farthest point within `near` of a region) and the footprint's edge
@@ -496,29 +544,45 @@ struct Ring {
   }
 
   // Where the ring at `log_zoom` moves the point at `p` (in the footprint, not the centre):
-  // centre + g t u, ln g = log_zoom ln(edge / s) / ln(edge / inner). s >= t and ds/dt <= 1 along
-  // the ray keep g t increasing (no fold) while edge > zoom inner. A sliding focus adds
-  // w(s) v, v = (zoom - 1) pull, w = (1 - (s / edge)^k) / (1 - (inner / edge)^k) with the power
-  // law's k: 1 in the focus (magnified about centre - pull), 0 at the edge, and of the same shape
-  // as g s, so the ring's radial to tangential scale stays radial_ratio along the ray (no fold
-  // while the slid focus ends inside the edge, v.u < edge - zoom inner).
+  // centre + g t u, ln g = log_zoom P(ln(edge / s) / lambda), lambda = ln(edge / inner), P the
+  // Rim's profile. s >= t and ds/dt <= 1 along the ray keep g t increasing (no fold) while edge
+  // > zoom inner. A sliding focus adds w(s) v, v = (zoom - 1) pull, w = (1 - g s / edge) / (1 -
+  // zoom inner / edge): 1 in the focus (magnified about centre - pull), 0 at the edge, and of the
+  // same shape as g s, so the slide scales the ring's radial to tangential scale along the ray by
+  // one factor, 1 - v.u / (edge - zoom inner) (radial_ratio; no fold while the slid focus ends
+  // inside the edge).
   Eigen::Vector2d moved(const Place& p, double log_zoom) const {
     const double lambda = std::log(p.edge / p.inner), sigma = std::log(p.edge / p.s);
-    const Eigen::Vector2d ringed = centre + std::exp(log_zoom * sigma / lambda) * p.t * p.u;
+    const Rim rim = rim_on(p, lambda, log_zoom);
+    const double x = sigma / lambda;
+    const Eigen::Vector2d ringed = centre + std::exp(log_zoom * rim.profile(x)) * p.t * p.u;
     if (pull == Eigen::Vector2d::Zero()) return ringed;
-    const double k = 1 - log_zoom / lambda;
-    const double w =
-        sigma * one_minus_exp_over(k * sigma) / (lambda * one_minus_exp_over(k * lambda));
+    const double room = lambda - log_zoom, spread = rim.spread(x);
+    const double w = spread * one_minus_exp_over(room * spread) / one_minus_exp_over(room);
     return ringed + w * std::expm1(log_zoom) * pull;
   }
 
   // Whether the ring moves p, in its footprint: not the centre, unless the focus slides.
   bool moves(const Place& p) const { return p.t > 0 || pull != Eigen::Vector2d::Zero(); }
 
-  // The radial to tangential scale of the ring at `log_zoom` along p's ray.
+  // The radial to tangential scale of the ring at `log_zoom` at p: the slid power law's along
+  // the ray (radial_ratio) times the Rim's relative one.
   double radial(const Place& p, double log_zoom) const {
     const double lambda = std::log(std::max(p.edge / p.inner, 1 + 1e-9));
-    return radial_ratio(lambda, log_zoom, std::expm1(log_zoom) * pull.dot(p.u), p.edge);
+    const double k = radial_ratio(lambda, log_zoom, std::expm1(log_zoom) * pull.dot(p.u), p.edge);
+    const double x = std::clamp(std::log(p.edge / p.s) / lambda, 0.0, 1.0);
+    return k * rim_on(p, lambda, log_zoom).relative_radial(x);
+  }
+
+  // The Rim on p's ray, lambda = ln(edge / inner) there. A slide's weight has the ring's slope at
+  // the edge, where the rim makes it 1 / k times the power law's: its shear across the ray, v
+  // times that slope, would fold the mesh's triangles where the slide is large beside the room,
+  // so the rim fades as the slide grows (none where |v| >= (edge - zoom inner) / 2).
+  Rim rim_on(const Place& p, double lambda, double log_zoom) const {
+    if (pull == Eigen::Vector2d::Zero()) return Rim(log_zoom / lambda);
+    const double room = -p.edge * std::expm1(log_zoom - lambda);  // edge - zoom inner
+    const double slide = std::expm1(log_zoom) * pull.norm();
+    return Rim(log_zoom / lambda, room > 0 ? slide / room : 1.0);
   }
 
   // The footprint's edge is where s reaches edge along a ray: level = s - edge, negative inside,
@@ -678,6 +742,13 @@ double radial_distortion_bound(double zoom, double ratio) {
               std::to_string(ratio));
   const double k = 1 - std::log(zoom) / std::log(ratio);
   return k > 0 ? 1 / k - 1 : std::numeric_limits<double>::infinity();
+}
+
+double rim_distortion_bound(double zoom, double ratio) {
+  const double power = radial_distortion_bound(zoom, ratio);
+  if (!std::isfinite(power)) return power;
+  const Rim rim(std::log(zoom) / std::log(ratio));
+  return (1 + rim.b * rim.a) * (1 + power) - 1;
 }
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,

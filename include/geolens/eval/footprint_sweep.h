@@ -21,8 +21,9 @@ struct SweepPoint {
 };
 
 struct Sweep {
-  std::vector<double> ratios;  ///< the footprint ratios swept
-  std::vector<double> bound;   ///< per ratio, radial_distortion_bound at the zoom reached
+  std::vector<double> ratios;     ///< the footprint ratios swept
+  std::vector<double> bound;      ///< per ratio, radial_distortion_bound at the zoom reached
+  std::vector<double> rim_bound;  ///< per ratio, rim_distortion_bound at the zoom reached
   std::vector<SweepPoint> points;
 };
 

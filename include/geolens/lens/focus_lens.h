@@ -50,6 +50,14 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
 /// ln ratio, and its distortion is 1 / (dv/du) - 1). Infinite when ratio <= zoom.
 double radial_distortion_bound(double zoom, double ratio);
 
+/// The maximum shape distortion of the focus lens's ring (focus_start) for the same disk, zoom
+/// and ratio: its profile ends at the footprint's edge without a crease (a radial scale reaching
+/// 1 with slope 0, docs/design.md, "A rim without a crease"), for which it compresses a little
+/// more within: (1 + b a) / k - 1, a = ln zoom / ln ratio, k = 1 - a, b = 0.3 up to a = 0.55,
+/// falling to 0 at a = 0.85 (where the ring has least room it is the power law), so at most 1.3
+/// times radial_distortion_bound. Infinite when ratio <= zoom.
+double rim_distortion_bound(double zoom, double ratio);
+
 /// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
 /// magnified together, as one focus: the union of their regions, at the largest of their zooms,
 /// about the centre of their peaks, or where the regions cross a side of the width x height image
