@@ -141,14 +141,16 @@ std::string sweep_markdown(const Sweep& sweep, const std::string& title) {
      << "Largest shape distortion s1/s2 - 1 of each method against the footprint ratio F (the "
         "focus lens's `--footprint`; every classic lens has radius F r and a flat top of the "
         "region's size), the focus uniformity (max / min magnification over the region) in "
-        "brackets where it is above 1.01, and the radial bound 1 / (1 - ln zoom / ln F) - 1 at "
-        "the zoom the focus lens reached.\n\n| F | zoom | bound |";
+        "brackets where it is above 1.01, the radial bound 1 / (1 - ln zoom / ln F) - 1 at "
+        "the zoom the focus lens reached, and the bound of the focus lens's ring, whose rim "
+        "ends without a crease (rim_distortion_bound, at most 1.3 times the radial bound).\n\n"
+        "| F | zoom | bound | rim bound |";
   std::vector<std::string> methods;
   for (const SweepPoint& p : sweep.points)
     if (std::find(methods.begin(), methods.end(), p.method) == methods.end())
       methods.push_back(p.method);
   for (const std::string& m : methods) md << " " << m << " |";
-  md << "\n|---:|---:|---:|";
+  md << "\n|---:|---:|---:|---:|";
   for (size_t m = 0; m < methods.size(); ++m) md << "---:|";
   md << "\n";
   for (size_t i = 0; i < sweep.ratios.size(); ++i) {
@@ -158,7 +160,7 @@ std::string sweep_markdown(const Sweep& sweep, const std::string& title) {
     require(geometric != nullptr, "sweep_markdown",
             "no geometric point at ratio " + std::to_string(sweep.ratios[i]));
     md << "| " << fixed_text(sweep.ratios[i], 2) << " | " << fixed_text(geometric->zoom, 3) << " | "
-       << fixed_text(sweep.bound[i], 3) << " |";
+       << fixed_text(sweep.bound[i], 3) << " | " << fixed_text(sweep.rim_bound[i], 3) << " |";
     for (const SweepPoint& p : sweep.points) {
       if (p.ratio != sweep.ratios[i]) continue;
       md << " " << fixed_text(p.shape_max, 3)
