@@ -831,8 +831,9 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
         out.log_scale(Eigen::Index(i)) = out.groups[size_t(closest)].log_zoom;
       }
       if (!c.pinned[i]) {
-        // The radial bound along this vertex's ray of its ring (the ratio of its radial to its
-        // tangential scale, or its inverse where the slid ring stretches along the ray), with
+        // The distortion of its ring at this vertex (the ratio of its radial to its tangential
+        // scale, or its inverse where the slid ring stretches along the ray; 1 at the footprint's
+        // edge, so the solve keeps the rim without a crease), with
         // the slack; a ray too short for the zoom has no radial solution: the bound then only
         // keeps the context from folding over itself (at most 20, a sliver).
         const double k = rings[owner].radial(owner_place, out.groups[owner].log_zoom);

@@ -125,8 +125,8 @@ struct FocusField {
   /// Focus: every vertex within `band` of a region (so every triangle that meets the
   /// region is whole in its focus), with the index of the nearest group. Pinned: every vertex
   /// that no group's ring (focus_start) moves, on or beyond every footprint's edge. Anisotropy:
-  /// the radial bound along the vertex's ray from the centre of the group whose ring it is
-  /// deepest in, times `slack`.
+  /// the distortion of the ring the vertex is deepest in, at the vertex (the power law's along
+  /// its ray, less within the rim, 1 at the footprint's edge), times `slack`.
   FocusConstraints constraints;
   Eigen::VectorXd log_scale;  ///< #V the group's log zoom in its focus, 0 elsewhere
   Eigen::VectorXd level;      ///< #V 1 where the vertex may move, 0 where pinned
@@ -168,16 +168,19 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// extent plus the band) and the footprint's edge lies at R (the focus scaled by the footprint
 /// ratio, within the group's disk, short of the image border where that is nearer); a point at
 /// distance t from c and d from the regions goes to c + g (p - c) with
-/// ln g = log_zoom ln(R / s) / ln(R / inner), s = max(t, inner + max(d - band, 0)). s >= t and
-/// ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle folds (in the
-/// continuum), the focus is magnified exactly, and the image border maps onto itself. For a
-/// circle this is the bound-reaching power ring. Where the ring has too little room on the rays
+/// ln g = log_zoom P(x), x = ln(R / s) / ln(R / inner), s = max(t, inner + max(d - band, 0)):
+/// the power law P = x but for its rim, where P's slope falls to 0 at the edge so that the ring
+/// ends there without a crease (rim_distortion_bound; docs/design.md, "A rim without a crease").
+/// s >= t and ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle
+/// folds (in the continuum), the focus is magnified exactly, and the image border maps onto
+/// itself. For a circle this is the power ring with its rim. Where the ring has too little room
+/// on the rays
 /// towards a side (FocusGroup::slides), the magnified focus slides away from it by the least v
-/// that gives every ray a radial to tangential scale of at least 0.2: a point moves by w v more,
-/// w = (1 - (s / R)^k) / (1 - (inner / R)^k) with the ray's power law k = 1 - ln zoom / ln(R /
-/// inner) (1 in the focus, which is then magnified about c - v / (zoom - 1), 0 at the edge), which
-/// keeps that scale constant along each ray, k - v.u / (R (1 - (inner / R)^k) / k); the image
-/// border, beyond the edge, stays. The groups are applied one after the other;
+/// that gives every ray's power law a radial to tangential scale of at least 0.2: a point moves
+/// by w v more, w = (1 - g s / R) / (1 - zoom inner / R) (1 in the focus, which is then magnified
+/// about c - v / (zoom - 1), 0 at the edge), which scales that scale along each ray by one
+/// factor, 1 - v.u / (R - zoom inner) (the rim fades as |v| nears half of R - zoom inner); the
+/// image border, beyond the edge, stays. The groups are applied one after the other;
 /// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
 /// corner, where the start has a cone that a wide triangle averages badly), the vertices of
 /// folded triangles outside the foci move to the mean of their neighbours, a few rounds.
