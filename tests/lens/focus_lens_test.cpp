@@ -357,6 +357,33 @@ TEST(FocusLens, ItsRimEndsWithoutACrease) {
   }
 }
 
+// A polygon's ring has the same rim: a paragraph-sized rectangle (268 x 174 px) at zoom 2, along
+// the ray down from its centre (0.0055 a pixel at most; the power ring stepped by 0.09 a pixel
+// over 5 px, from 0.54 inside its edge to 1).
+TEST(FocusLens, APolygonsRimEndsWithoutACrease) {
+  LensOptions options;
+  options.mesh = 400;
+  const Lens lens{Region::polygon({{358, 318}, {626, 318}, {626, 492}, {358, 492}}), 2};
+  const LensResult r = GeometricLens(1024, 1024, options).solve({lens});
+  const WarpMap map(r.warp);
+  const double step = 5;
+  auto scale = [&](double t) {  // the scale along the ray over [t, t + step]
+    const std::optional<Eigen::Vector2d> a = map.forward({492, 405 + t}),
+                                         b = map.forward({492, 405 + t + step});
+    EXPECT_TRUE(a && b);
+    return a && b ? (*b - *a).y() / step : 0.0;
+  };
+  double edge = 0, worst = 0;
+  for (double t = 100; t < 600; t += 1) {
+    if (std::abs(scale(t) - 1) > 1e-3) edge = t;
+    worst = std::max(worst, std::abs(scale(t + step) - scale(t)) / step);
+  }
+  EXPECT_GT(edge, 300);  // the footprint reaches that far below the centre
+  EXPECT_LE(worst, 0.02);
+  EXPECT_GT(scale(edge - 6), 0.97);
+  EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
+}
+
 TEST(FocusLens, FootprintMustExceedTheZoom) {
   Lens lens{Region::circle({500, 500}, 50), 2.0};
   lens.footprint = 2.0;
