@@ -320,10 +320,31 @@ TEST(FocusLens, DraggedToAndAcrossASideItGetsItsZoomAllTheWay) {
   }
 }
 
+// A warp's scale along the ray from `origin` in unit direction `u` (source pixels): at t, the
+// component along u of how far the points at t and t + step apart go, over step (5 px, a cell
+// of the 400 grid, so that the mesh's piecewise linear steps do not count).
+struct RayScale {
+  const WarpMap& map;
+  Eigen::Vector2d origin, u;
+  double step = 5;
+  double operator()(double t) const {
+    const std::optional<Eigen::Vector2d> a = map.forward(origin + t * u),
+                                         b = map.forward(origin + (t + step) * u);
+    EXPECT_TRUE(a && b) << t;
+    return a && b ? (*b - *a).dot(u) / step : 0.0;
+  }
+  // The largest change of the scale per pixel for t in [from, to), in 1 px steps.
+  double largest_change(double from, double to) const {
+    double worst = 0;
+    for (double t = from; t < to; t += 1)
+      worst = std::max(worst, std::abs((*this)(t + step) - (*this)(t)) / step);
+    return worst;
+  }
+};
+
 // The rim without a crease: along a ray from a circle's centre the radial scale reaches 1 at the
 // footprint's edge continuously, changing by at most 0.02 a pixel across it at zooms 2 to 8
-// (measured over 5 px, a cell of the 400 grid, so that the mesh's piecewise linear steps do not
-// count; 0.013 to 0.015 here); the power ring's scale jumped from about k (0.39 at zoom 3, 0.25
+// (RayScale; 0.013 to 0.015 here); the power ring's scale jumped from about k (0.39 at zoom 3, 0.25
 // at 8) to 1 within a pixel there. Its focus is still magnified exactly.
 TEST(FocusLens, ItsRimEndsWithoutACrease) {
   LensOptions options;
@@ -334,20 +355,11 @@ TEST(FocusLens, ItsRimEndsWithoutACrease) {
     const Lens lens{Region::circle({1024, 675}, 50), zoom};
     const LensResult r = geometric.solve({lens});
     const WarpMap map(r.warp);
-    const double edge = 50 * footprint_ratio(lens), step = 5;
+    const double edge = 50 * footprint_ratio(lens);
     for (const Eigen::Vector2d u : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0.6, -0.8)}) {
-      auto scale = [&](double t) {  // the radial scale over [t, t + step]
-        const std::optional<Eigen::Vector2d> a = map.forward(Eigen::Vector2d(1024, 675) + t * u),
-                                             b = map.forward(Eigen::Vector2d(1024, 675) +
-                                                             (t + step) * u);
-        EXPECT_TRUE(a && b);
-        return a && b ? (*b - *a).dot(u) / step : 0.0;
-      };
-      double worst = 0;
-      for (double t = 0.5 * edge; t < edge + 20; t += 1)
-        worst = std::max(worst, std::abs(scale(t + step) - scale(t)) / step);
-      EXPECT_LE(worst, 0.02);
-      EXPECT_GT(scale(edge - step - 1), 0.97);
+      const RayScale scale{map, {1024, 675}, u};
+      EXPECT_LE(scale.largest_change(0.5 * edge, edge + 20), 0.02);
+      EXPECT_GT(scale(edge - scale.step - 1), 0.97);
       EXPECT_NEAR(scale(edge + 1), 1, 1e-6);
     }
     const TriangleDistortion measures = measure_triangles(r.warp);
@@ -366,20 +378,12 @@ TEST(FocusLens, APolygonsRimEndsWithoutACrease) {
   const Lens lens{Region::polygon({{358, 318}, {626, 318}, {626, 492}, {358, 492}}), 2};
   const LensResult r = GeometricLens(1024, 1024, options).solve({lens});
   const WarpMap map(r.warp);
-  const double step = 5;
-  auto scale = [&](double t) {  // the scale along the ray over [t, t + step]
-    const std::optional<Eigen::Vector2d> a = map.forward({492, 405 + t}),
-                                         b = map.forward({492, 405 + t + step});
-    EXPECT_TRUE(a && b);
-    return a && b ? (*b - *a).y() / step : 0.0;
-  };
-  double edge = 0, worst = 0;
-  for (double t = 100; t < 600; t += 1) {
+  const RayScale scale{map, {492, 405}, {0, 1}};
+  double edge = 0;  // the last point of the ray the lens moves
+  for (double t = 100; t < 600; t += 1)
     if (std::abs(scale(t) - 1) > 1e-3) edge = t;
-    worst = std::max(worst, std::abs(scale(t + step) - scale(t)) / step);
-  }
   EXPECT_GT(edge, 300);  // the footprint reaches that far below the centre
-  EXPECT_LE(worst, 0.02);
+  EXPECT_LE(scale.largest_change(100, 600), 0.02);
   EXPECT_GT(scale(edge - 6), 0.97);
   EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
 }
