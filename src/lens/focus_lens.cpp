@@ -781,7 +781,15 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
     } else {
       why = "its footprint (a larger footprint ratio fits more)";
     }
-    for (size_t k : group.lenses) (*reasons)[k] = why;
+    for (size_t k : group.lenses) {
+      // A merged group's lenses are magnified as one focus: say with which.
+      std::string with;
+      for (size_t j : group.lenses)
+        if (j != k) with += (with.empty() ? "" : ", ") + std::to_string(j + 1);
+      (*reasons)[k] = with.empty() ? why
+                                   : why + "; magnified as one with lens " + with +
+                                         " (their magnified foci overlap)";
+    }
   }
   return fits;
 }
