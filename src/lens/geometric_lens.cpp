@@ -323,7 +323,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
   for (const Lens& lens : out) fits.push_back(lens.zoom);
   // Then what the mesh of the fitted lenses, the one they are solved on, holds without folding
   // (its footprints kept, the curves the mesh follows); the last frame's mesh, moved, where the
-  // lenses only moved.
+  // lenses only moved. Last, the zooms each group is solved at are the ones reported.
   auto lower = [&](const std::vector<double>& caps) {
     for (size_t k = 0; k < out.size(); ++k) {
       if (!short_of(caps[k], out[k].zoom, kRounding)) continue;
@@ -333,6 +333,7 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
       if (short_of(fits[k], lenses[k].zoom, kShortfall))
         r.zoom_fit_reasons[k] = "the mesh (a finer mesh fits more)";
     }
+    report_group_zooms(lenses, out, width_, height_, r);
   };
   MeshMemo* memo = cache ? &cache->mesh : nullptr;
   if (memo && moved_only(memo->lenses, out)) {
@@ -343,7 +344,6 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
       memo->box = box;
       memo->grid = grid;
       lower(memo->unfolding);
-      report_group_zooms(lenses, out, width_, height_, r);
       return out;
     }
   }
@@ -354,7 +354,6 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
       unfolding_zooms(grid, out, out_cell, focus_band(out, out_cell), width_, height_, *pool_);
   if (memo) *memo = MeshMemo{out, box, grid, unfolding, std::move(on_curve), clear_of_border(out)};
   lower(unfolding);
-  report_group_zooms(lenses, out, width_, height_, r);
   return out;
 }
 
