@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-jobs=$(nproc)
+jobs=$(bash scripts/jobs.sh)
 work=$(mktemp -d "${TMPDIR:-/tmp}/geolens-package.XXXXXX")
 if [ "${GEOLENS_PACKAGE_KEEP:-0}" = 1 ]; then
   echo "keeping $work"

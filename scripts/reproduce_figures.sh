@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 
 BUILD=${BUILD:-build}
 cmake --build "$BUILD" --target geolens_cli make_figure_inputs make_scene_examples \
-  -j"$(nproc)" >/dev/null
+  -j"$(bash scripts/jobs.sh)" >/dev/null
 GEOLENS=$BUILD/geolens
 OUT=docs/reproduction
 TMP=$(mktemp -d)

@@ -32,9 +32,9 @@ export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DCMAKE_CXX_FLAGS="${flags[*]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[*]}" -DGEOLENS_BUILD_BENCH=OFF \
   -DGEOLENS_BUILD_PYTHON=OFF  # a sanitized module does not load into an uninstrumented python3
-cmake --build "$build" -j"$(nproc)"
+cmake --build "$build" -j"$(bash scripts/jobs.sh)"
 status=0
-ctest --test-dir "$build" --output-on-failure -j"$(nproc)" || status=$?
+ctest --test-dir "$build" --output-on-failure -j"$(bash scripts/jobs.sh)" || status=$?
 if compgen -G "$logs/report*" > /dev/null; then
   echo "sanitize.sh: sanitizer findings:" >&2
   cat "$logs"/report* >&2
