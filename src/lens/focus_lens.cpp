@@ -879,42 +879,43 @@ void apply_ring(Eigen::MatrixX2d& X, const Ring& ring, double log_zoom, ThreadPo
   });
 }
 
-// Unfolds the start X of mesh (V, F) where its triangles fold though the continuous start does
-// not: near a polygon's corner, where the start has a cone (a point's shift grows with its
-// distance from the corner), a triangle that spans a wide angle as seen from the corner folds
-// under the cone's linear average on a fine mesh. The vertices of folded triangles that are
-// neither in a focus (within `band` of a region) nor unmoved go to the mean of their
-// neighbours, for a few rounds; then, for a few more, half way back to where they were in the
-// source. The second repairs a sliver the first cannot: where a footprint's edge meets an image
-// side at a glancing angle, the mesh that follows it has triangles a few px long and a
-// thousandth of a px high, with a vertex on the edge (unmoved) and one just inside it that the
-// ring moves by a few thousandths of a px, enough to fold it (a circle r 50 at zoom 3, 58 px
-// below the top of a 2048 x 1350 image). Returns the folds left.
-int relax_folds(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3i& F,
-                const std::vector<Lens>& lenses, double band) {
-  constexpr int kRounds = 8, kBackRounds = 8;
-  auto folded = [&](Eigen::Index f) {
-    const Eigen::Vector2d a = X.row(F(f, 0)), b = X.row(F(f, 1)), c = X.row(F(f, 2));
-    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() <= 0;
+// One way of unfolding the start X of mesh (V, F) (cell side `cell`, pixels) where its
+// triangles fold though the continuous start does not (relax_folds), for a few rounds: the
+// vertices of folded triangles that are neither in a focus (within `band` of a region) nor
+// unmoved go to the mean of their neighbours for the first half of the rounds, and half way back
+// to their source places in the rest; with `slivers_back`, a sliver's (a triangle of under a
+// thousandth of a cell's area in the source) go back from the first round. Returns the folds
+// left.
+int unfold(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3i& F,
+           const std::vector<Lens>& lenses, double cell, double band, bool slivers_back) {
+  constexpr int kRounds = 16, kMeanRounds = 8;
+  const double sliver = 2e-3 * cell * cell;  // twice a thousandth of a cell's area
+  auto area2 = [&](const Eigen::MatrixX2d& P, Eigen::Index f) {
+    const Eigen::Vector2d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  auto movable = [&](Eigen::Index i) {
+    if (X.row(i) == V.row(i)) return false;
+    for (const Lens& lens : lenses)
+      if (lens.region.distance(V.row(i).transpose()) <= band) return false;
+    return true;
   };
   for (int round = 0;; ++round) {
-    std::vector<Eigen::Index> moved;
-    for (Eigen::Index f = 0; f < F.rows(); ++f)
-      if (folded(f))
-        for (int k = 0; k < 3; ++k) moved.push_back(F(f, k));
-    if (moved.empty() || round == kRounds + kBackRounds) return int(moved.size() / 3);
-    std::sort(moved.begin(), moved.end());
-    moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
-    std::erase_if(moved, [&](Eigen::Index i) {
-      if (X.row(i) == V.row(i)) return true;
-      for (const Lens& lens : lenses)
-        if (lens.region.distance(V.row(i).transpose()) <= band) return true;
-      return false;
-    });
-    if (round >= kRounds) {
-      for (const Eigen::Index i : moved) X.row(i) = 0.5 * (X.row(i) + V.row(i));
-      continue;
+    std::vector<Eigen::Index> moved, back;
+    int folds = 0;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      if (area2(X, f) > 0) continue;
+      ++folds;
+      const bool goes_back = round >= kMeanRounds || (slivers_back && area2(V, f) < sliver);
+      for (int k = 0; k < 3; ++k) (goes_back ? back : moved).push_back(F(f, k));
     }
+    if (folds == 0 || round == kRounds) return folds;
+    for (std::vector<Eigen::Index>* list : {&moved, &back}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+      std::erase_if(*list, [&](Eigen::Index i) { return !movable(i); });
+    }
+    for (const Eigen::Index i : back) X.row(i) = 0.5 * (X.row(i) + V.row(i));
     // The mean of each moved vertex's neighbours (each edge counted once per triangle side).
     Eigen::MatrixX2d sum = Eigen::MatrixX2d::Zero(Eigen::Index(moved.size()), 2);
     Eigen::VectorXd count = Eigen::VectorXd::Zero(Eigen::Index(moved.size()));
@@ -930,6 +931,31 @@ int relax_folds(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::Mat
     for (size_t j = 0; j < moved.size(); ++j)
       X.row(moved[j]) = sum.row(Eigen::Index(j)) / count(Eigen::Index(j));
   }
+}
+
+// Unfolds the start X of mesh (V, F) where its triangles fold though the continuous start does
+// not. Near a polygon's corner the start has a cone (a point's shift grows with its distance
+// from the corner), and a triangle that spans a wide angle as seen from the corner folds under
+// the cone's linear average on a fine mesh: its vertices go to their neighbours' mean. Where a
+// footprint's edge meets an image side at a glancing angle, the ring's edge turns fast from ray
+// to ray and the mesh that follows it has slivers a thousandth of a px high, with a vertex on
+// the edge (unmoved) and one just inside that the ring moves by more than that: their vertices
+// going half way back to their source places unfolds them where the mean may not. Neither way
+// unfolds every such fold (the mean spreads a sliver's fold to the triangles around, and going
+// back first fails where the mean would have done): each alone left a circle r 24 at zoom 3
+// dragged along the top side of a 320 x 240 picture, 6 or 15 px below it, a few places where it
+// got 2.41 for "the mesh" between places that got 3. So the mean is tried first, and where it
+// leaves a fold, slivers back first from X as it came. Returns the folds left.
+int relax_folds(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3i& F,
+                const std::vector<Lens>& lenses, double cell, double band) {
+  const Eigen::MatrixX2d unrepaired = X;
+  const int folds = unfold(X, V, F, lenses, cell, band, false);
+  if (folds == 0) return 0;
+  Eigen::MatrixX2d other = unrepaired;
+  const int other_folds = unfold(other, V, F, lenses, cell, band, true);
+  if (other_folds >= folds) return folds;
+  X = std::move(other);
+  return other_folds;
 }
 
 }  // namespace
@@ -1037,7 +1063,7 @@ Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& le
                              const std::vector<FocusGroup>& groups, double cell, double band,
                              double width, double height, ThreadPool& pool) {
   Eigen::MatrixX2d X = focus_map(lenses, groups, cell, band, width, height, pool)(mesh.V);
-  relax_folds(X, mesh.V, mesh.F, lenses, band);
+  relax_folds(X, mesh.V, mesh.F, lenses, cell, band);
   return X;
 }
 
@@ -1051,7 +1077,7 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
     for (const double fraction : kZoomFractions) {
       Eigen::MatrixX2d X = mesh.V;
       apply_ring(X, ring, fraction * group.log_zoom, pool);
-      if (relax_folds(X, mesh.V, mesh.F, lenses, band) > 0) continue;
+      if (relax_folds(X, mesh.V, mesh.F, lenses, cell, band) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
     }
@@ -1068,7 +1094,7 @@ FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
     Eigen::MatrixX2d start;
     if (fraction == 1) {
       start = field.start;
-      relax_folds(start, mesh.V, mesh.F, lenses, band);
+      relax_folds(start, mesh.V, mesh.F, lenses, cell, band);
     } else {
       std::vector<FocusGroup> lowered = field.groups;
       for (FocusGroup& g : lowered) g.log_zoom *= fraction;

@@ -183,8 +183,9 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
 /// corner, where the start has a cone that a wide triangle averages badly), the vertices of
 /// folded triangles outside the foci move to the mean of their neighbours, a few rounds, then
-/// half way back to their source places, a few more (a sliver where a footprint's edge meets an
-/// image side at a glancing angle).
+/// half way back to their source places; where a fold is left, the same from the unrepaired
+/// start with a sliver's vertices going back from the first round (slivers of the mesh where a
+/// footprint's edge meets an image side at a glancing angle).
 /// Returns #V x 2, pixels.
 Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
