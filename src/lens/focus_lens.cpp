@@ -247,8 +247,7 @@ struct Rim {
   // The radial to tangential scale 1 - a P'(x) over the power law's 1 - a (1 where b = 0).
   double relative_radial(double x) const {
     if (b == 0) return 1;
-    const double y = std::min(x / delta, 1.0);
-    return (1 - a * m * y * y * (3 - 2 * y)) / (1 - a);
+    return (1 - a * m * fade(x / delta)) / (1 - a);
   }
   // (x - a P(x)) / (1 - a), 0 at the edge and 1 in the focus: the ring moves a point to g s =
   // edge e^(-(lambda - L) Q(x)) along its ray (for a circle), and a slide's weight (Ring::moved)
@@ -881,6 +880,13 @@ void apply_ring(Eigen::MatrixX2d& X, const Ring& ring, double log_zoom, ThreadPo
   });
 }
 
+// Twice the signed area of triangle f of F (#F x 3) at the points P (#V x 2, pixels): positive
+// for a counter-clockwise triangle.
+double area2(const Eigen::MatrixX2d& P, const Eigen::MatrixX3i& F, Eigen::Index f) {
+  const Eigen::Vector2d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
 // One way of unfolding the start X of mesh (V, F) (cell side `cell`, pixels) where its
 // triangles fold though the continuous start does not (relax_folds), for a few rounds: the
 // vertices of folded triangles that are neither in a focus (within `band` of a region) nor
@@ -892,10 +898,6 @@ int unfold(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3
            const std::vector<Lens>& lenses, double cell, double band, bool slivers_back) {
   constexpr int kRounds = 16, kMeanRounds = 8;
   const double sliver = 2e-3 * cell * cell;  // twice a thousandth of a cell's area
-  auto area2 = [&](const Eigen::MatrixX2d& P, Eigen::Index f) {
-    const Eigen::Vector2d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
-    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-  };
   auto movable = [&](Eigen::Index i) {
     if (X.row(i) == V.row(i)) return false;
     for (const Lens& lens : lenses)
@@ -906,9 +908,9 @@ int unfold(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3
     std::vector<Eigen::Index> moved, back;
     int folds = 0;
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      if (area2(X, f) > 0) continue;
+      if (area2(X, F, f) > 0) continue;
       ++folds;
-      const bool goes_back = round >= kMeanRounds || (slivers_back && area2(V, f) < sliver);
+      const bool goes_back = round >= kMeanRounds || (slivers_back && area2(V, F, f) < sliver);
       for (int k = 0; k < 3; ++k) (goes_back ? back : moved).push_back(F(f, k));
     }
     if (folds == 0 || round == kRounds) return folds;
@@ -1046,16 +1048,11 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
       V.row(i) = q.transpose();
     }
   });
-  auto area2 = [&](const Eigen::MatrixX2d& X, Eigen::Index f) {
-    const Eigen::Vector2d a = X.row(mesh.F(f, 1)) - X.row(mesh.F(f, 0)),
-                          b = X.row(mesh.F(f, 2)) - X.row(mesh.F(f, 0));
-    return a.x() * b.y() - a.y() * b.x();
-  };
   // (A sliver, below a hundredth of a cell's area, as the curves cut beside the border where a
   // footprint's edge runs a hair inside it, may shrink further, but not fold or vanish.)
   const double sliver = 1e-2 * to_cell * to_cell;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const double before = area2(mesh.V, f), now = area2(V, f);
+    const double before = area2(mesh.V, mesh.F, f), now = area2(V, mesh.F, f);
     if (!(now > 0 && (now > 0.2 * before || before < sliver))) return std::nullopt;
   }
   return V;
