@@ -15,6 +15,7 @@
 #include "geolens/io/image.h"
 #include "geolens/io/run_files.h"
 #include "geolens/render/render.h"
+#include "interrupt.h"
 
 namespace geolens {
 
@@ -64,6 +65,7 @@ int run_compare(const CompareArgs& a) {
   require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
           "must be >= 0, got " + std::to_string(a.heat_max));
   RunFiles files;
+  const cli::RemoveOnInterrupt interrupt(files);
   cli::add_source_inputs(files, a.input, a.source);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
     files.add_input("the --lens " + f.kind + " file", f.path);

@@ -21,6 +21,7 @@
 #include "geolens/render/annotate.h"
 #include "geolens/render/overlay.h"
 #include "geolens/render/render.h"
+#include "interrupt.h"
 #include "lens_args.h"
 #include "map.h"
 #include "source_args.h"
@@ -45,6 +46,7 @@ int run_magnify(const MagnifyArgs& a) {
     require(is_writable_image_path(a.before_after), "--before-after",
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
   RunFiles files;
+  const cli::RemoveOnInterrupt interrupt(files);
   cli::add_source_inputs(files, a.input, a.source);
   if (!a.overlay.empty()) files.add_input("the --overlay file", a.overlay);
   for (const LensSpecFile& f : cli::lens_files(a.lens))

@@ -16,6 +16,7 @@
 #include "geolens/io/run_files.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
+#include "interrupt.h"
 #include "source_args.h"
 
 namespace geolens {
@@ -111,6 +112,7 @@ int run_map(const MapArgs& a) {
   require(a.max_segment > 0, "--max-segment",
           "must be > 0 pixels, got " + std::to_string(a.max_segment));
   RunFiles files;
+  const cli::RemoveOnInterrupt interrupt(files);
   if (a.input != "-") files.add_input("the input", a.input);
   if (!a.image.empty()) files.add_input("the --image", a.image);
   for (const LensSpecFile& f : cli::lens_files(a.lens))

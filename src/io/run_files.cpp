@@ -1,5 +1,10 @@
 #include "geolens/io/run_files.h"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -19,11 +24,12 @@ void require_parent(const std::string& option, const std::string& path) {
 
 }  // namespace
 
-RunFiles::~RunFiles() {
+RunFiles::~RunFiles() { remove_temporaries(); }
+
+void RunFiles::remove_temporaries() const noexcept {
   if (committed_) return;
-  std::error_code error;
-  for (const Output& o : outputs_) std::filesystem::remove(o.temporary, error);
-  for (auto f = made_.rbegin(); f != made_.rend(); ++f) std::filesystem::remove(*f, error);
+  for (const Output& o : outputs_) ::unlink(o.temporary.c_str());
+  for (auto f = made_.rbegin(); f != made_.rend(); ++f) ::rmdir(f->c_str());
 }
 
 void RunFiles::add_input(const std::string& role, const std::string& path) {
@@ -35,7 +41,24 @@ void RunFiles::add_folder(const std::string& option, const std::string& path) {
 }
 
 void RunFiles::add_output(const std::string& option, const std::string& path) {
-  outputs_.push_back({option, path, temporary_path(path)});
+  namespace fs = std::filesystem;
+  Output o{option, path, path, "", false, false};
+  std::error_code error;
+  if (fs::is_symlink(fs::symlink_status(path, error))) {
+    const fs::path target = fs::canonical(path, error);
+    if (!error)
+      o.target = target.string();
+    else  // a link to nothing, or one that names no path (/dev/stdout -> pipe:[N]): written through
+      o.dangling = !fs::exists(fs::status(path, error));
+  }
+  const fs::file_status status = fs::status(o.target, error);
+  o.in_place = !o.dangling && fs::exists(status) && !fs::is_regular_file(status) &&
+               !fs::is_directory(status);
+  // An output written in place is staged where the run may make files, with its extension.
+  o.temporary = temporary_path(
+      o.in_place ? (fs::temp_directory_path(error) / fs::path(o.target).filename()).string()
+                 : o.target);
+  outputs_.push_back(std::move(o));
 }
 
 void RunFiles::check() const {
@@ -51,10 +74,18 @@ void RunFiles::check() const {
     const Output& o = outputs_[k];
     const char* option = o.option.c_str();
     require(!fs::is_directory(o.path), option, "'" + o.path + "' is an existing folder");
-    const std::string parent = fs::path(o.path).parent_path().string();
+    require(!o.dangling, option, "'" + o.path + "' is a symbolic link to a file that is missing");
+    const std::string parent = fs::path(o.target).parent_path().string();
     bool added = false;
     for (const Named& f : folders_) added = added || same_file(f.path, parent);
-    if (!added) require_parent(o.option, o.path);
+    if (!added) require_parent(o.option, o.target);
+    // Checked now, not found once the work is done.
+    if (o.in_place)
+      require(::access(o.target.c_str(), W_OK) == 0, option,
+              "cannot write '" + o.path + "': " + std::strerror(errno));
+    else if (!added)
+      require(::access(parent.empty() ? "." : parent.c_str(), W_OK | X_OK) == 0, option,
+              "cannot write in the folder of '" + o.path + "': " + std::strerror(errno));
     for (const Named& in : inputs_)
       require(!same_file(in.path, o.path), option,
               "'" + o.path + "' would overwrite " + in.option + " '" + in.path + "'");
@@ -77,8 +108,23 @@ std::string RunFiles::staged(const std::string& path) {
 void RunFiles::commit() {
   for (const Output& o : outputs_) {
     std::error_code error;
-    std::filesystem::rename(o.temporary, o.path, error);
-    if (error) throw IoError("cannot write '" + o.path + "': " + error.message());
+    if (!o.in_place) {
+      std::filesystem::rename(o.temporary, o.target, error);
+      if (error) throw IoError("cannot write '" + o.path + "': " + error.message());
+      continue;
+    }
+    // A device or a FIFO: its bytes written into it, the staged file removed either way.
+    const std::string bytes = read_file(o.temporary, "RunFiles::commit", "staged");
+    std::filesystem::remove(o.temporary, error);
+    std::string reason;
+    if (std::FILE* file = std::fopen(o.target.c_str(), "wb")) {
+      if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())
+        reason = std::strerror(errno);
+      if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
+    } else {
+      reason = std::strerror(errno);
+    }
+    if (!reason.empty()) throw IoError("cannot write '" + o.path + "': " + reason);
   }
   committed_ = true;
 }

@@ -4,6 +4,7 @@
 #include "support/cli_test.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
@@ -166,6 +167,58 @@ TEST_F(Cli, FailureAfterTheWorkLeavesNoOutput) {
   EXPECT_EQ(left.size(), 2u);  // in.png and stderr.txt
   for (const std::string& f : left)
     EXPECT_TRUE(f == path("in.png") || f == path("stderr.txt")) << f;
+}
+
+// Stopped by SIGTERM while it writes (here blocked on a FIFO given as its --output, which it
+// writes into rather than replaces, with no reader yet), a run removes its temporary files, the
+// --stats one already staged beside stats.json and the --output's in the temporary folder, and
+// dies of the signal (exit 143 in the shell). A link given as an output writes the file it names.
+TEST_F(Cli, InterruptedRunLeavesNoTemporaryAndLinksAreFollowed) {
+  const std::string fifo = path("fifo.png");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string script = path("interrupt.sh");
+  std::ofstream(script) << std::string(GEOLENS_CLI) + " magnify " + path("in.png") + " -o " + fifo +
+                               " --stats " + path("stats.json") +
+                               " --lens circle:128,96,30:1.5 2> /dev/null &\n"
+                               "p=$!\n"
+                               "for i in $(seq 600); do\n"
+                               "  ls " +
+                               path("stats.tmp-") +
+                               "* > /dev/null 2>&1 && break\n"
+                               "  sleep 0.05\n"
+                               "done\n"
+                               "sleep 0.2\n"
+                               "kill -TERM $p\n"
+                               "wait $p\n"
+                               "echo $? > " +
+                               path("code.txt") +
+                               "\n"
+                               "ls " +
+                               fs::temp_directory_path().string() +
+                               "/fifo.tmp-$p-* 2> /dev/null | wc -l > " + path("left.txt") + "\n";
+  ASSERT_EQ(std::system(("sh " + script).c_str()), 0);
+  std::string code, left;
+  std::ifstream(path("code.txt")) >> code;
+  std::ifstream(path("left.txt")) >> left;
+  EXPECT_EQ(code, "143");
+  EXPECT_EQ(left, "0");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+  EXPECT_FALSE(fs::exists(path("stats.json")));
+
+  std::ofstream(path("real.json")) << "old";
+  fs::create_symlink("real.json", path("link.json"));
+  const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.png") + " --stats " +
+                       path("link.json") + " --lens circle:128,96,30:1.5");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(path("link.json")));
+  EXPECT_EQ(std::ifstream(path("real.json")).peek(), '{');  // the stats, not "old"
+  fs::create_symlink("missing.json", path("dangling.json"));
+  expect_refused(
+      "magnify " + path("in.png") + " -o " + path("out2.png") + " --stats " +
+          path("dangling.json") + " --lens circle:128,96,30:1.5",
+      "--stats: '" + path("dangling.json") + "' is a symbolic link to a file that is missing");
 }
 
 // A run that succeeds writes every output, each where it was asked, and no temporary file.

@@ -1,10 +1,13 @@
 #include "geolens/io/file_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "geolens/core/errors.h"
 #include "support/scratch_folder.h"
@@ -123,6 +126,68 @@ TEST_F(RunFilesTest, ClashesAreRefusedBeforeAnyWork) {
   EXPECT_NE(refused({{"-o", (dir_ / "missing" / "o.png").string()}}).find("does not exist"),
             std::string::npos);
   EXPECT_EQ(refused({{"-o", (dir_ / "o.png").string()}}), "");
+}
+
+// A link is followed (the file it names is written, the link stays), a link to nothing is refused,
+// and a file that is not a regular one is written into, never replaced (`--stats /dev/stdout` had
+// replaced /dev/stdout's link with a regular file, run as root).
+TEST_F(RunFilesTest, LinksAreFollowedAndSpecialFilesWrittenInPlace) {
+  const std::string real = (dir_ / "real.json").string(), link = (dir_ / "link.json").string();
+  write_file(real, "old");
+  fs::create_symlink("real.json", link);
+  fs::create_symlink("missing.json", dir_ / "dangling.json");
+  const std::string fifo = (dir_ / "fifo.json").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  {
+    RunFiles files;
+    files.add_output("--stats", (dir_ / "dangling.json").string());
+    try {
+      files.check();
+      ADD_FAILURE() << "a link to nothing was accepted";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("symbolic link to a file that is missing"),
+                std::string::npos);
+    }
+  }
+  std::string read_back;
+  std::thread reader([&] {
+    std::ifstream in(fifo);
+    read_back.assign(std::istreambuf_iterator<char>(in), {});
+  });
+  {
+    RunFiles files;
+    files.add_output("--stats", link);
+    files.add_output("--output", fifo);
+    files.check();
+    write_file(files.staged(link), "new");
+    write_file(files.staged(fifo), "through the fifo");
+    EXPECT_FALSE(fs::path(files.staged(fifo)).string().starts_with(dir_.string()));
+    files.commit();
+  }
+  reader.join();
+  EXPECT_EQ(read_back, "through the fifo");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_file(real, "test", "stats"), "new");
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"dangling.json", "fifo.json", "link.json", "real.json"}));
+}
+
+// What a signal handler calls: the staged files and the folders made for them go, the outputs
+// never appear.
+TEST_F(RunFilesTest, RemoveTemporariesLeavesNothingBehind) {
+  const std::string folder = (dir_ / "made").string(), out = (dir_ / "made" / "o.txt").string();
+  RunFiles files;
+  files.add_folder("--output", folder);
+  files.add_output("--output", out);
+  files.check();
+  write_file(files.staged(out), "1");
+  EXPECT_TRUE(fs::exists(folder));
+  files.remove_temporaries();
+  EXPECT_TRUE(fs::is_empty(dir_));
 }
 
 }  // namespace

@@ -22,29 +22,43 @@ class RunFiles {
   void add_input(const std::string& role, const std::string& path);
   /// A folder given by `option` that holds outputs, made by staged() if it is missing.
   void add_folder(const std::string& option, const std::string& path);
-  /// A file given by `option` that the run writes.
+  /// A file given by `option` that the run writes. A symbolic link is followed: the file it
+  /// names is written, and the link stays. An existing file that is not a regular one (a
+  /// device such as /dev/stdout, a FIFO) is written in place, never replaced.
   void add_output(const std::string& option, const std::string& path);
 
   /// Throws InvalidInput naming the option and the path when a folder exists as a file or its
-  /// parent is missing, or an output is an existing folder, is in a missing folder that is not
-  /// an added one, is the same file as an input or is the same file as another output.
+  /// parent is missing, or an output is an existing folder, is a symbolic link to nothing, is in
+  /// a missing folder that is not an added one or in a folder the run may not write in, is the
+  /// same file as an input or is the same file as another output.
   void check() const;
 
-  /// The temporary file to write the output `path` to: in its folder, with its extension (the
-  /// image format). Makes the added folders that are missing. Throws std::logic_error if `path`
-  /// was not added.
+  /// The temporary file to write the output `path` to: beside the file written, with its
+  /// extension (the image format; in the system's temporary folder for an output written in
+  /// place). Makes the added folders that are missing. Throws std::logic_error if `path` was not
+  /// added.
   std::string staged(const std::string& path);
 
   /// Renames every temporary file into place, one by one (an output renamed before a later one
-  /// fails stays). Throws IoError naming the output that failed.
+  /// fails stays); copies it into an output written in place. Throws IoError naming the output
+  /// that failed.
   void commit();
+
+  /// Removes the temporary files and the folders staged() made (if empty) with unlink and rmdir
+  /// only, so a signal handler may call it (the CLI's, on SIGINT, SIGTERM and SIGHUP); does
+  /// nothing after commit().
+  void remove_temporaries() const noexcept;
 
  private:
   struct Named {
     std::string option, path;  // for an input, its role
   };
   struct Output {
-    std::string option, path, temporary;
+    std::string option, path;
+    std::string target;     // the file written: path, or the file its link names
+    std::string temporary;  // where it is staged
+    bool dangling = false;  // path is a symbolic link to nothing
+    bool in_place = false;  // target exists and is not a regular file: copied into, not replaced
   };
   std::vector<Named> inputs_, folders_;
   std::vector<Output> outputs_;
