@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/thread_pool.h"
 #include "geolens/lens/lens_spec.h"
 
 namespace geolens::cli {
@@ -79,6 +80,9 @@ LensOptions parse_options(const LensArgs& a) {
   options.flatten.boundary = parse_boundary(a.boundary);
   options.flatten.tolerance = a.tolerance;
   options.flatten.max_iterations = a.max_iterations;
+  require(a.threads >= 0 && a.threads <= ThreadPool::kMaxThreads, "--threads",
+          "must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
+              std::to_string(a.threads));
   options.flatten.threads = a.threads;
   validate(options);
   require_zoom(a.zoom, "--zoom");

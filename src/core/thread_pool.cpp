@@ -7,6 +7,7 @@
 #include <exception>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -79,14 +80,21 @@ struct ThreadPool::State {
 };
 
 ThreadPool::ThreadPool(int threads) : state_(std::make_unique<State>()) {
-  require(threads >= 0, "ThreadPool", "threads must be >= 0, got " + std::to_string(threads));
-  size_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  require(threads >= 0 && threads <= kMaxThreads, "ThreadPool",
+          "threads must be in [0, " + std::to_string(kMaxThreads) + "], got " +
+              std::to_string(threads));
+  size_ =
+      threads > 0 ? threads : std::clamp(int(std::thread::hardware_concurrency()), 1, kMaxThreads);
   try {
     state_->workers.reserve(size_t(size_ - 1));
     for (int t = 1; t < size_; ++t)
       state_->workers.emplace_back([s = state_.get()] { s->worker(); });
-  } catch (...) {
+  } catch (const std::system_error& e) {
     state_->join();  // the workers already started
+    throw SolverError("ThreadPool: cannot start " + std::to_string(size_) + " threads (" +
+                      e.what() + "); ask for fewer");
+  } catch (...) {
+    state_->join();
     throw;
   }
 }

@@ -64,7 +64,9 @@ void validate(const FlattenOptions& o) {
           "tolerance must be in (0, 1), got " + std::to_string(o.tolerance));
   require(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate",
           "max iterations must be in [1, 100000], got " + std::to_string(o.max_iterations));
-  require(o.threads >= 0, "validate", "threads must be >= 0, got " + std::to_string(o.threads));
+  require(o.threads >= 0 && o.threads <= ThreadPool::kMaxThreads, "validate",
+          "threads must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
+              std::to_string(o.threads));
 }
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,

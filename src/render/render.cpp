@@ -288,7 +288,9 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
   require(options.height >= 1 && options.height <= kMaxOutputSide, fn,
           "height must be in [1, " + std::to_string(kMaxOutputSide) + "], got " +
               std::to_string(options.height));
-  require(options.threads >= 0, fn, "threads must be >= 0, got " + std::to_string(options.threads));
+  require(options.threads >= 0 && options.threads <= ThreadPool::kMaxThreads, fn,
+          "threads must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
+              std::to_string(options.threads));
   require(std::isfinite(options.source_scale) && options.source_scale > 0, fn,
           "source_scale must be finite and > 0, got " + std::to_string(options.source_scale));
   require(options.level_band > 0 && options.level_band <= 1, fn,

@@ -140,6 +140,11 @@ SourceFile open_tile_folder(const std::string& path, const SourceFileOptions& op
   require(!zooms.empty(), kFn,
           "'" + path + "' has no zoom folders (subfolders 0, 1, 2, ... holding x/y.png tiles)");
   state->zmax = *zooms.rbegin();
+  // Tiles of at least 2 px at zoom 30 already make 2^31 texels a side, past the limit below; a
+  // larger zoom would shift the sizes out of their integers.
+  require(state->zmax <= 30, kFn,
+          "'" + path + "' has a zoom folder " + std::to_string(state->zmax) +
+              ": zooms above 30 (2^30 texels a side) are not read");
   for (int z = 0; z <= state->zmax; ++z)
     require(zooms.count(z) > 0, kFn,
             "'" + path + "' has zooms up to " + std::to_string(state->zmax) + " but no '" +

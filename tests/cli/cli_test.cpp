@@ -59,6 +59,8 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,20:9", "zoom");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --zoom 0.5", "zoom");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha -0.1", "alpha");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --threads 100000",
+                 "--threads: must be in [0, 1024], got 100000");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha nan", "alpha");
   expect_refused("magnify " + in + out + " --lens circle:300,50,20", "outside");
   expect_refused("magnify " + in + out + " --lens circle:50,-1,20", "outside");

@@ -37,9 +37,12 @@ TEST(ThreadPool, RunsEveryIndexExactlyOnce) {
   }
 }
 
-TEST(ThreadPool, ZeroThreadsMeansOnePerHardwareThreadAndNegativeIsRejected) {
+TEST(ThreadPool, ZeroThreadsMeansOnePerHardwareThreadAndOutOfRangeIsRejected) {
   EXPECT_EQ(ThreadPool(0).size(), int(std::max(1u, std::thread::hardware_concurrency())));
   EXPECT_THROW(ThreadPool(-1), InvalidInput);
+  // A typo's 100000 is refused by the limit, before the system runs out of threads.
+  EXPECT_THROW(ThreadPool(ThreadPool::kMaxThreads + 1), InvalidInput);
+  EXPECT_THROW(ThreadPool(100000), InvalidInput);
 }
 
 TEST(ThreadPool, OneThreadRunsEverythingOnTheCallingThread) {

@@ -263,6 +263,14 @@ TEST_F(XyzTilesTest, BadFoldersAreRefusedNamingTheFolderOrFile) {
   EXPECT_NE(what.find("png_tile_folder"), std::string::npos) << what;
 
   EXPECT_THROW(geolens::open_tile_folder((dir_ / "absent").string()), InvalidInput);
+
+  // Zoom folders 0 to 56 (empty but the root): refused by the zoom, before any size is shifted
+  // by it (UndefinedBehaviorSanitizer had found a shift by 56).
+  fs::remove_all(dir_ / "0");
+  write_tile(world(0, T), T, 0, 0, 0);
+  for (int z = 1; z <= 56; ++z) fs::create_directories(dir_ / std::to_string(z));
+  what = refusal();
+  EXPECT_NE(what.find("has a zoom folder 56: zooms above 30"), std::string::npos) << what;
 }
 
 TEST_F(XyzTilesTest, ATileOfAnotherSizeIsRefusedWhenFetchedNamingIt) {

@@ -20,9 +20,12 @@ namespace geolens {
 /// Not copyable or movable; objects that share a pool hold a std::shared_ptr to it.
 class ThreadPool {
  public:
+  /// The most threads a pool runs (a typo's 100000 would exhaust the system's threads first).
+  static constexpr int kMaxThreads = 1024;
   /// @param threads  threads that run a loop, the calling thread included: 0 = one per hardware
   ///                 thread (std::thread::hardware_concurrency, at least 1); 1 = every loop on
-  ///                 the calling thread, no worker started. Throws InvalidInput if < 0.
+  ///                 the calling thread, no worker started. Throws InvalidInput if < 0 or above
+  ///                 kMaxThreads, SolverError if the system cannot start them.
   explicit ThreadPool(int threads = 0);
   /// Stops and joins the workers; no run() may be in progress.
   ~ThreadPool();
