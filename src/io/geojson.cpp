@@ -146,6 +146,9 @@ class Reader {
   }
 
   VectorData document(const std::string& text) const {
+    if (const size_t depth = json_depth(text); depth > kMaxJsonDepth)
+      fail("the document", "nested " + std::to_string(depth) + " levels deep; at most " +
+                               std::to_string(kMaxJsonDepth) + " are read");
     Json root;
     try {
       root = Json::parse(text);
@@ -238,6 +241,28 @@ Json feature_json(const Feature& f, size_t k) {
 }
 
 }  // namespace
+
+size_t json_depth(const std::string& text) {
+  size_t depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
 
 VectorData parse_geojson(const std::string& text, const std::string& name) {
   return Reader(name).document(text);

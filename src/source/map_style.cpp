@@ -10,6 +10,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
+#include "geolens/io/geojson.h"
 
 namespace geolens {
 
@@ -233,6 +234,9 @@ MapStyle default_map_style() {
 
 MapStyle parse_map_style(const std::string& text, const std::string& name) {
   const Reader reader(name);
+  if (const size_t depth = json_depth(text); depth > kMaxJsonDepth)
+    reader.fail("JSON", "nested " + std::to_string(depth) + " levels deep; at most " +
+                            std::to_string(kMaxJsonDepth) + " are read");
   Json j;
   try {
     j = Json::parse(text);

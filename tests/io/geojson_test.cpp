@@ -210,6 +210,30 @@ TEST(GeoJson, MalformedDocumentsAreRefusedNamingTheProblem) {
   }
 }
 
+// Nesting is measured without parsing (brackets in strings do not count) and bounded before the
+// readers recurse: 100 000 nested GeometryCollections overflowed the stack; 256 levels are read.
+TEST(GeoJson, NestingIsBoundedBeforeParsing) {
+  EXPECT_EQ(json_depth("1"), 0u);
+  EXPECT_EQ(json_depth(R"({"a": [1, {"b": "[[[{"}], "c\"[": []})"), 3u);
+  auto nested = [](size_t n) {
+    std::string text;
+    for (size_t k = 0; k < n; ++k) text += R"({"type":"GeometryCollection","geometries":[)";
+    text += R"({"type":"Point","coordinates":[1,2]})";
+    for (size_t k = 0; k < n; ++k) text += "]}";
+    return text;
+  };
+  EXPECT_EQ(json_depth(nested(100)), 202u);
+  EXPECT_EQ(parse_geojson(nested(100), "deep.geojson").features.size(), 1u);
+  try {
+    parse_geojson(nested(100000), "deep.geojson");
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("nested 200002 levels deep; at most 256 are read"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 class GeoJsonFile : public testing::ScratchFolderTest {};
 
 TEST_F(GeoJsonFile, ReadsAFileAndNamesItWhenItCannot) {

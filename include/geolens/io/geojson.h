@@ -2,6 +2,7 @@
 // GeoJSON files (RFC 7946) of vector data in pixels: read, written back, and the properties of a
 // feature looked up.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -17,11 +18,18 @@ namespace geolens {
 /// ignored (a bbox would be stale once the coordinates are mapped).
 /// @param name  where the text came from (a file name, "standard input"), for messages
 /// Throws InvalidInput("parse_geojson: '<name>': <where>: <what>") for text that is not JSON
-/// (with its line and column), an unknown or missing "type", a member of the wrong kind, a
-/// position that is not two finite numbers, or a geometry_problem (vector_data.h); <where> names
-/// the feature by its index and the coordinate by its indices ("feature 3: LineString
-/// coordinates[2]").
+/// (with its line and column) or is nested deeper than kMaxJsonDepth, an unknown or missing "type",
+/// a member of the wrong kind, a position that is not two finite numbers, or a geometry_problem
+/// (vector_data.h); <where> names the feature by its index and the coordinate by its indices
+/// ("feature 3: LineString coordinates[2]").
 VectorData parse_geojson(const std::string& text, const std::string& name);
+
+/// The deepest nesting of arrays and objects in the JSON text `text` (0 for a scalar), counted
+/// without parsing it, in one pass that does not recurse. The JSON readers (parse_geojson,
+/// parse_map_style) refuse text nested deeper than kMaxJsonDepth before parsing it: their
+/// readers recurse (a GeoJSON of 100 000 nested GeometryCollections overflowed the stack).
+size_t json_depth(const std::string& text);
+inline constexpr size_t kMaxJsonDepth = 256;
 
 /// parse_geojson of the file at `path`. Throws InvalidInput naming the path if it cannot be read.
 VectorData read_geojson(const std::string& path);
