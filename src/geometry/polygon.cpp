@@ -130,7 +130,9 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
   std::vector<Eigen::Vector2d> vertices;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
-    const std::string content = line.substr(0, line.find('#'));
+    std::string content = line.substr(0, line.find('#'));
+    std::replace_if(
+        content.begin(), content.end(), [](char c) { return c == ',' || c == ';'; }, ' ');
     std::istringstream tokens(content);
     std::vector<std::string> words;
     for (std::string word; tokens >> word;) words.push_back(word);
@@ -144,10 +146,14 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
     }
     require(ok, "read_polygon_file",
             path + ":" + std::to_string(number) + ": expected two finite numbers \"x y\", got \"" +
-                line + "\"");
+                (line.size() > 60
+                     ? line.substr(0, 60) + "...(" + std::to_string(line.size()) + " characters)"
+                     : line) +
+                "\"");
     vertices.push_back(v);
   }
   require(!in.bad(), "read_polygon_file", "error while reading '" + path + "'");
+  if (vertices.size() > 1 && vertices.back() == vertices.front()) vertices.pop_back();
   return vertices;
 }
 

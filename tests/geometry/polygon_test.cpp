@@ -94,8 +94,17 @@ TEST_F(PolygonFile, ReadsPairsSkippingBlankLinesAndComments) {
   EXPECT_TRUE(read_polygon_file(write("geolens_polygon_empty.txt", "# nothing\n")).empty());
 }
 
+// What users have: CSV-like lines ("x,y", "x, y", "x;y") and a closed ring's repeated first
+// vertex (dropped, only at the end and only when equal to the first).
+TEST_F(PolygonFile, ReadsCommaAndSemicolonPairsAndDropsAClosingVertex) {
+  const std::string path = write("geolens_polygon_csv.txt", "10,20\n30.5, -4e1\n1e2;0.25\n10 20\n");
+  EXPECT_EQ(read_polygon_file(path), (Points{{10, 20}, {30.5, -40}, {100, 0.25}}));
+  const std::string open = write("geolens_polygon_open.txt", "0 0\n4 0\n0 0.5\n0 0.0001\n");
+  EXPECT_EQ(read_polygon_file(open).size(), 4u);
+}
+
 TEST_F(PolygonFile, RejectsMalformedLinesNamingFileAndLine) {
-  for (const std::string bad : {"1 2 3", "1", "a b", "1 nan", "1 inf", "1,2", "1 2x"}) {
+  for (const std::string bad : {"1 2 3", "1", "a b", "1 nan", "1 inf", "1,2,3", "1 2x"}) {
     const std::string path = write("geolens_polygon_bad.txt", "0 0\n# fine\n" + bad + "\n5 5\n");
     try {
       read_polygon_file(path);
@@ -105,6 +114,19 @@ TEST_F(PolygonFile, RejectsMalformedLinesNamingFileAndLine) {
                                            ":3: expected two finite numbers \"x y\", got \"" + bad +
                                            "\"");
     }
+  }
+}
+
+// A line of a binary or huge file is shown by its first 60 characters and its length.
+TEST_F(PolygonFile, ALongBadLineIsShortenedInTheMessage) {
+  const std::string path = write("geolens_polygon_long.txt", std::string(100000, 'z') + "\n");
+  try {
+    read_polygon_file(path);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_LT(what.size(), 300u);
+    EXPECT_NE(what.find("...(100000 characters)"), std::string::npos) << what;
   }
 }
 

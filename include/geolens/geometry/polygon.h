@@ -16,8 +16,10 @@ namespace geolens {
 void validate_polygon(const std::vector<Eigen::Vector2d>& vertices,
                       const char* function = "validate_polygon");
 
-/// Reads polygon vertices from a text file: one "x y" pair (pixels, whitespace-separated) per
-/// line; blank lines and everything from a '#' to the end of its line are skipped. Throws
+/// Reads polygon vertices from a text file: one "x y" pair (pixels) per line, separated by
+/// blanks, a comma or a semicolon ("x y", "x,y", "x, y", "x;y"); blank lines and everything from
+/// a '#' to the end of its line are skipped; a last vertex equal to the first (a closed ring, as
+/// GeoJSON and many tools write it) is dropped. Throws
 /// InvalidInput naming the file for an unreadable file, and the file and line number for a line
 /// that is not two finite numbers. The shape is not checked: see validate_polygon.
 std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path);
