@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -70,11 +71,16 @@ struct MapData {
 };
 
 /// `value` as a message shows it: 120, 41.5, 1e+300.
+// The shortest text that reads back to `value` (180.00000000000014, not a rounded 180).
 std::string number_text(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
 }
+
+// How far past the valid range a coordinate may be and still be read, clamped, degrees: the
+// rounding of the tools that wrote it (Natural Earth's land has 180.00000000000014 and
+// -90.00000000000003).
+constexpr double kDegreeTolerance = 1e-9;
 
 /// (lon, lat) degrees projected, y north.
 Eigen::Vector2d project(MapProjection projection, double lon, double lat) {
@@ -247,12 +253,15 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
     for (Part& part : map->features[f])
       for (Path& path : part.paths)
         for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
-          const double lon = path.points(i, 0), lat = path.points(i, 1);
-          require(lon >= -180 && lon <= 180 && lat >= -90 && lat <= 90, function,
+          double lon = path.points(i, 0), lat = path.points(i, 1);
+          const double t = kDegreeTolerance;
+          require(lon >= -180 - t && lon <= 180 + t && lat >= -90 - t && lat <= 90 + t, function,
                   "feature " + std::to_string(f) + ": the position (" + number_text(lon) + ", " +
                       number_text(lat) +
                       ") is not a longitude in [-180, 180] and a latitude in [-90, 90] (a vector "
                       "map is in degrees, WGS84)");
+          lon = std::clamp(lon, -180.0, 180.0);
+          lat = std::clamp(lat, -90.0, 90.0);
           const Eigen::Vector2d p = project(style.projection, lon, lat);
           path.points.row(i) = p.transpose();
           if (!style.extent) extent.add(p.x(), p.y());

@@ -92,6 +92,33 @@ TEST_F(VectorMapTest, PolygonFillsWhereItsCoordinatesSay) {
     EXPECT_TRUE(is(frame.at(x, y), 0, 0, 255)) << x << ", " << y;
 }
 
+// Coordinates a hair past the valid range, as real files have them (Natural Earth's land:
+// 180.00000000000014, -90.00000000000003), are read as the range's end; farther ones are refused
+// with the value as written, not rounded to one that looks valid.
+TEST_F(VectorMapTest, CoordinatesWithinABillionthOfADegreeOfTheRangeAreClamped) {
+  auto feature = [](const std::string& position) {
+    return R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+      "geometry": {"type": "LineString", "coordinates": [[0, 0], )" +
+           position + "]}}]}";
+  };
+  write_text(path("style.json"),
+             R"({"projection": "plate_carree", "layers": [{"stroke": "#000"}]})");
+  SourceFileOptions options;
+  options.width = 200;
+  options.style = path("style.json");
+  write_text(path("edge.geojson"), feature("[180.00000000000014, -90.00000000000003]"));
+  EXPECT_EQ(geolens::open_source(path("edge.geojson"), options).frame_width, 200);
+  write_text(path("past.geojson"), feature("[180.000001, 0]"));
+  try {
+    geolens::open_source(path("past.geojson"), options);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the position (180.000001, 0) is not a longitude"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(VectorMapTest, LayerShowsOnlyOnTheLevelsOfItsZooms) {
   const geolens::VectorData data = geolens::parse_geojson(kSquare, "square");
   const SourceFile file =
