@@ -1,5 +1,7 @@
 #include "source_args.h"
 
+#include <filesystem>
+
 #include "lens_args.h"
 
 namespace geolens::cli {
@@ -14,6 +16,8 @@ void add_source_options(CLI::App& command, SourceArgs& a, const std::string& siz
 
 void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
   files.add_input("the input", input);
+  // A tile folder's tiles are inputs too.
+  if (std::filesystem::is_directory(input)) files.add_input_folder("the input tile folder", input);
   if (!a.style.empty()) files.add_input("the --style file", a.style);
   // A --transfer that names a file is read too; a preset name is no file and clashes with none.
   if (!a.transfer.empty()) files.add_input("the --transfer file", a.transfer);

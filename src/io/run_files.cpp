@@ -22,6 +22,21 @@ void require_parent(const std::string& option, const std::string& path) {
           "folder '" + parent.string() + "' of '" + path + "' does not exist");
 }
 
+// Whether `path` is in the folder `folder` at any depth, both resolved as far as they exist.
+bool inside(const std::string& path, const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path p = fs::weakly_canonical(fs::absolute(path, error), error);
+  const fs::path f = fs::weakly_canonical(fs::absolute(folder, error), error);
+  if (error) return false;
+  auto a = p.begin(), b = f.begin();
+  for (; a != p.end() && b != f.end(); ++a, ++b) {
+    if (b->empty()) break;  // the trailing separator of "folder/"
+    if (*a != *b) return false;
+  }
+  return (b == f.end() || b->empty()) && a != p.end();
+}
+
 }  // namespace
 
 RunFiles::~RunFiles() { remove_temporaries(); }
@@ -34,6 +49,10 @@ void RunFiles::remove_temporaries() const noexcept {
 
 void RunFiles::add_input(const std::string& role, const std::string& path) {
   inputs_.push_back({role, path});
+}
+
+void RunFiles::add_input_folder(const std::string& role, const std::string& path) {
+  input_folders_.push_back({role, path});
 }
 
 void RunFiles::add_folder(const std::string& option, const std::string& path) {
@@ -89,6 +108,9 @@ void RunFiles::check() const {
     for (const Named& in : inputs_)
       require(!same_file(in.path, o.path), option,
               "'" + o.path + "' would overwrite " + in.option + " '" + in.path + "'");
+    for (const Named& in : input_folders_)
+      require(!inside(o.target, in.path), option,
+              "'" + o.path + "' is inside " + in.option + " '" + in.path + "'");
     for (size_t j = 0; j < k; ++j)
       require(!same_file(outputs_[j].path, o.path), option,
               "'" + o.path + "' is the same file as " + outputs_[j].option + " '" +

@@ -69,6 +69,17 @@ TEST_F(TilesCli, MagnifiesATileFolderAtTheAskedFrameAndCountsTheMissingTiles) {
   EXPECT_EQ(load_image(path("out.png")).at(44, 44)[0], 150);
 }
 
+// An output inside the input tile folder (a tile, or a new file among them) is refused before
+// any work: it had overwritten the tile it named.
+TEST_F(TilesCli, RefusesAnOutputInsideTheInputTileFolder) {
+  expect_refused("magnify " + path("tiles") + " --size 64x64 --lens circle:24,24,6:2 -o " +
+                     path("tiles/2/1/1.png"),
+                 "--output: '" + path("tiles/2/1/1.png") + "' is inside the input tile folder");
+  expect_refused("magnify " + path("tiles") + " --size 64x64 --lens circle:24,24,6:2 -o " +
+                     path("out.png") + " --stats " + path("tiles/stats.json"),
+                 "--stats: '" + path("tiles/stats.json") + "' is inside the input tile folder");
+}
+
 TEST_F(TilesCli, MagnifiesALevelList) {
   save_image(path("fine.png"), flat_tile(128, 60));
   save_image(path("coarse.png"), flat_tile(32, 90));

@@ -128,6 +128,30 @@ TEST_F(RunFilesTest, ClashesAreRefusedBeforeAnyWork) {
   EXPECT_EQ(refused({{"-o", (dir_ / "o.png").string()}}), "");
 }
 
+// A folder the run reads (a tile folder) holds no output at any depth, however spelled; a
+// sibling folder whose name starts with its name is not in it.
+TEST_F(RunFilesTest, NoOutputInsideAnInputFolder) {
+  fs::create_directories(dir_ / "tiles" / "3" / "2");
+  fs::create_directories(dir_ / "tiles2");
+  auto why = [&](const std::string& output) {
+    RunFiles files;
+    files.add_input_folder("the input tile folder", (dir_ / "tiles").string());
+    files.add_output("-o", output);
+    try {
+      files.check();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(why((dir_ / "tiles" / "3" / "2" / "1.png").string()).find("is inside the input tile"),
+            std::string::npos);
+  EXPECT_NE(why((dir_ / "tiles2" / ".." / "tiles" / "o.png").string()).find("is inside"),
+            std::string::npos);
+  EXPECT_EQ(why((dir_ / "tiles2" / "o.png").string()), "");
+  EXPECT_EQ(why((dir_ / "o.png").string()), "");
+}
+
 // A link is followed (the file it names is written, the link stays), a link to nothing is refused,
 // and a file that is not a regular one is written into, never replaced (`--stats /dev/stdout` had
 // replaced /dev/stdout's link with a regular file, run as root).

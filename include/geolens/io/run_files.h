@@ -20,6 +20,9 @@ class RunFiles {
 
   /// A file the run reads (`role`: "the input image", ...); no output may be it.
   void add_input(const std::string& role, const std::string& path);
+  /// A folder the run reads (`role`: "the input tile folder"); no output may be in it, at any
+  /// depth.
+  void add_input_folder(const std::string& role, const std::string& path);
   /// A folder given by `option` that holds outputs, made by staged() if it is missing.
   void add_folder(const std::string& option, const std::string& path);
   /// A file given by `option` that the run writes. A symbolic link is followed: the file it
@@ -30,7 +33,7 @@ class RunFiles {
   /// Throws InvalidInput naming the option and the path when a folder exists as a file or its
   /// parent is missing, or an output is an existing folder, is a symbolic link to nothing, is in
   /// a missing folder that is not an added one or in a folder the run may not write in, is the
-  /// same file as an input or is the same file as another output.
+  /// same file as an input, is in an input folder or is the same file as another output.
   void check() const;
 
   /// The temporary file to write the output `path` to: beside the file written, with its
@@ -60,7 +63,7 @@ class RunFiles {
     bool dangling = false;  // path is a symbolic link to nothing
     bool in_place = false;  // target exists and is not a regular file: copied into, not replaced
   };
-  std::vector<Named> inputs_, folders_;
+  std::vector<Named> inputs_, input_folders_, folders_;
   std::vector<Output> outputs_;
   std::vector<std::string> made_;  // folders staged() made
   bool committed_ = false;
