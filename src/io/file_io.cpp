@@ -50,8 +50,12 @@ void write_file(const std::string& path, const std::string& content) {
 
 std::string read_file(const std::string& path, const char* function, const std::string& kind) {
   std::error_code error;
-  require(!std::filesystem::is_directory(path, error), function,
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  require(!std::filesystem::is_directory(status), function,
           "'" + path + "' is a directory, not a " + kind + " file");
+  // Read whole, a device never ends (/dev/zero) and a FIFO may never open.
+  require(!std::filesystem::exists(status) || std::filesystem::is_regular_file(status), function,
+          "'" + path + "' is not a regular file (a device or a FIFO), not a " + kind + " file");
   std::ifstream in(path, std::ios::binary);
   require(bool(in), function, "cannot open '" + path + "'");
   std::stringstream text;

@@ -40,6 +40,15 @@ Format format_of(const std::string& path) {
 
 // The whole file, or the reason it cannot be read.
 std::vector<uint8_t> read_bytes(const std::string& path, std::string& reason) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    // Read whole, a device never ends (/dev/zero) and a FIFO may never open.
+    reason = std::filesystem::is_directory(status)
+                 ? "it is a directory"
+                 : "it is not a regular file (a device or a FIFO)";
+    return {};
+  }
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                        &std::fclose);
   std::vector<uint8_t> bytes;

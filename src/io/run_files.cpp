@@ -82,6 +82,13 @@ void RunFiles::add_output(const std::string& option, const std::string& path) {
 
 void RunFiles::check() const {
   namespace fs = std::filesystem;
+  // Read whole, a device never ends (/dev/zero filled the memory) and a FIFO may never open.
+  for (const Named& in : inputs_) {
+    std::error_code error;
+    const fs::file_status status = fs::status(in.path, error);
+    require(!fs::exists(status) || fs::is_regular_file(status) || fs::is_directory(status),
+            in.option.c_str(), "'" + in.path + "' is not a regular file (a device or a FIFO)");
+  }
   for (const Named& f : folders_) {
     if (fs::exists(f.path))
       require(fs::is_directory(f.path), f.option.c_str(),

@@ -61,6 +61,13 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha -0.1", "alpha");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --threads 100000",
                  "--threads: must be in [0, 1024], got 100000");
+  // Devices and FIFOs are refused before they are read (an image path of /dev/zero filled the
+  // memory, a FIFO hung).
+  expect_refused("magnify /dev/zero" + out + " --lens circle:50,50,20",
+                 "'/dev/zero' is not a regular file (a device or a FIFO)");
+  ASSERT_EQ(::mkfifo(path("fifo.txt").c_str(), 0600), 0);
+  expect_refused("magnify " + in + out + " --lens polygon:" + path("fifo.txt"),
+                 "'" + path("fifo.txt") + "' is not a regular file (a device or a FIFO)");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha nan", "alpha");
   expect_refused("magnify " + in + out + " --lens circle:300,50,20", "outside");
   expect_refused("magnify " + in + out + " --lens circle:50,-1,20", "outside");

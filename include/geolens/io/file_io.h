@@ -21,7 +21,8 @@ void write_file(const std::string& path, const void* data, size_t size);
 void write_file(const std::string& path, const std::string& content);
 
 /// The bytes of the file at `path`. Throws InvalidInput, naming `function`, if `path` is a folder
-/// ("'PATH' is a directory, not a KIND file"), cannot be opened or fails while read.
+/// ("'PATH' is a directory, not a KIND file"), a device or a FIFO, cannot be opened or fails
+/// while read.
 std::string read_file(const std::string& path, const char* function, const std::string& kind);
 
 /// True when `a` and `b` name the same file (or would, once created).

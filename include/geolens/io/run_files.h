@@ -18,7 +18,8 @@ class RunFiles {
   /// Removes every temporary file, and every folder staged() made, unless commit() ran.
   ~RunFiles();
 
-  /// A file the run reads (`role`: "the input image", ...); no output may be it.
+  /// A file the run reads (`role`: "the input image", ...); no output may be it, and it may not
+  /// be a device or a FIFO (check()).
   void add_input(const std::string& role, const std::string& path);
   /// A folder the run reads (`role`: "the input tile folder"); no output may be in it, at any
   /// depth.
