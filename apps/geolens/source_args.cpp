@@ -16,8 +16,10 @@ void add_source_options(CLI::App& command, SourceArgs& a, const std::string& siz
 
 void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
   files.add_input("the input", input);
-  // A tile folder's tiles are inputs too.
+  // A tile folder's tiles, a pyramid's level images and a volume's detached data are inputs too.
   if (std::filesystem::is_directory(input)) files.add_input_folder("the input tile folder", input);
+  for (const std::string& part : source_parts(input))
+    files.add_input("the file '" + input + "' reads", part);
   if (!a.style.empty()) files.add_input("the --style file", a.style);
   // A --transfer that names a file is read too; a preset name is no file and clashes with none.
   if (!a.transfer.empty()) files.add_input("the --transfer file", a.transfer);

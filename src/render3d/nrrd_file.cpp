@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -94,7 +95,33 @@ std::string inflate_all(const unsigned char* data, size_t size, size_t expected,
   return out;
 }
 
+// A detached data file's name (as the header gives it) resolved against the header's folder.
+std::string resolved_data_path(const std::string& header, const std::string& name) {
+  const std::filesystem::path named(name);
+  return named.is_absolute() ? named.string()
+                             : (std::filesystem::path(header).parent_path() / named).string();
+}
+
 }  // namespace
+
+std::string nrrd_data_path(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return "";
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line) || line.compare(0, 7, "NRRD000") != 0) return "";
+  for (size_t read = 0; read < (size_t(1) << 20) && std::getline(in, line);) {
+    read += line.size() + 1;
+    if (trim(line).empty()) break;
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos || line[0] == '#') continue;
+    const std::string name = trim(line.substr(0, colon));
+    if ((name == "data file" || name == "datafile") && colon + 1 < line.size() &&
+        line[colon + 1] != '=')
+      return resolved_data_path(path, trim(line.substr(colon + 1)));
+  }
+  return "";
+}
 
 ScalarVolume load_nrrd(const std::string& path) {
   const char* f = "load_nrrd";
@@ -207,10 +234,7 @@ ScalarVolume load_nrrd(const std::string& path) {
   size_t data_start = at;
   std::string data_where = where;
   if (!detached_name.empty()) {
-    const std::filesystem::path name(detached_name);
-    const std::string data_path = name.is_absolute()
-                                      ? name.string()
-                                      : (std::filesystem::path(path).parent_path() / name).string();
+    const std::string data_path = resolved_data_path(path, detached_name);
     detached = read_file(data_path, f, "NRRD data");
     data = &detached;
     data_start = 0;

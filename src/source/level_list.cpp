@@ -259,6 +259,27 @@ class LevelListSource : public Source {
 
 /// The level (>= 0) an image of width x height is for, of a finest W x H; -1 if its width fits
 /// no level, -2 if its width does but its height does not.
+// The images named by the level list `text` read from `path`: name, line and path (resolved
+// against the list's folder), sizes not read.
+std::vector<ListedImage> listed_images(const std::string& text, const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<ListedImage> images;
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const size_t last = line.find_last_not_of(" \t\r");
+    ListedImage image;
+    image.name = line.substr(first, last - first + 1);
+    image.line = number;
+    const std::filesystem::path named_path(image.name);
+    image.path = (named_path.is_absolute() ? named_path : folder / named_path).string();
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
 int level_of(int width, int height, int W, int H) {
   bool width_fits = false;
   // Levels down to the first 1 x 1 one, as Source counts them.
@@ -279,20 +300,9 @@ SourceFile open_level_list(const std::string& path, const SourceFileOptions& opt
   require(options.width >= 0 && options.height >= 0, kFn,
           "the frame size must be >= 0, got " + std::to_string(options.width) + " x " +
               std::to_string(options.height));
-  const std::string text = read_file(path, kFn, "level list");
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::vector<ListedImage> images;
-  std::istringstream lines(text);
-  std::string line;
-  for (int number = 1; std::getline(lines, line); ++number) {
-    const size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    const size_t last = line.find_last_not_of(" \t\r");
-    ListedImage image;
-    image.name = line.substr(first, last - first + 1);
-    image.line = number;
-    const std::filesystem::path named_path(image.name);
-    image.path = (named_path.is_absolute() ? named_path : folder / named_path).string();
+  for (ListedImage image : listed_images(read_file(path, kFn, "level list"), path)) {
+    const int number = image.line;
     std::string why;
     std::tie(image.width, image.height) = image_size(image.path, why);
     require(why.empty(), kFn,
@@ -364,6 +374,17 @@ SourceFile open_level_list(const std::string& path, const SourceFileOptions& opt
   };
   file.source = source;
   return file;
+}
+
+std::vector<std::string> level_list_images(const std::string& path) {
+  std::vector<std::string> paths;
+  try {
+    for (const ListedImage& image : listed_images(read_file(path, kFn, "level list"), path))
+      paths.push_back(image.path);
+  } catch (const InvalidInput&) {
+    // Unreadable: open_level_list names it.
+  }
+  return paths;
 }
 
 }  // namespace geolens

@@ -6,6 +6,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/render/annotate.h"
+#include "geolens/render3d/nrrd_file.h"
 #include "geolens/source/level_list.h"
 #include "geolens/source/mesh_source.h"
 #include "geolens/source/mip_pyramid.h"
@@ -38,6 +39,14 @@ SourceFile image_source(const Image& image) {
   file.frame_height = image.height;
   file.kind = "image";
   return file;
+}
+
+std::vector<std::string> source_parts(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext == ".levels") return level_list_images(path);
+  if (ext == ".nrrd")
+    if (std::string data = nrrd_data_path(path); !data.empty()) return {data};
+  return {};
 }
 
 SourceFile open_source(const std::string& path, const SourceFileOptions& options) {

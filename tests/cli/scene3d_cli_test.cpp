@@ -102,6 +102,16 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   expect_refused("magnify " + path("sphere.nrrd") + " --transfer bone" + lens,
                  "unknown transfer 'bone'");
   expect_refused("magnify " + path("cube.obj") + " --view 10" + lens, "is not AZ,EL");
+  // A detached data file is an input: an output naming it is refused before any work (it was
+  // overwritten).
+  write("head.nrrd",
+        "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: "
+        "head.raw\n");
+  write("head.raw", std::string(64, '\x40'));
+  expect_refused("magnify " + path("head.nrrd") + " --lens circle:50,50,20 -o " + path("head.png") +
+                     " --stats " + path("head.raw"),
+                 "--stats: '" + path("head.raw") + "' would overwrite the file '" +
+                     path("head.nrrd") + "' reads");
 }
 
 }  // namespace

@@ -94,6 +94,12 @@ TEST_F(TilesCli, MagnifiesALevelList) {
   EXPECT_EQ(source.at("scale"), 4.0);
   EXPECT_EQ(out.at(16, 16)[0], 60);  // the focus reads a level made from the fine image
   EXPECT_EQ(out.at(1, 1)[0], 90);
+  // A level image is an input: an output naming it is refused before any work (it was
+  // overwritten).
+  expect_refused(
+      "magnify " + path("map.levels") + " --lens circle:16,16,3:2 -o " + path("coarse.png"),
+      "--output: '" + path("coarse.png") + "' would overwrite the file '" + path("map.levels") +
+          "' reads");
 }
 
 TEST_F(TilesCli, BadTileFoldersAndLevelListsAreRefusedInOneLine) {

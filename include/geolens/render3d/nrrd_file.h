@@ -20,4 +20,10 @@ namespace geolens {
 /// header claims more data than the file holds), a corrupt gzip stream.
 ScalarVolume load_nrrd(const std::string& path);
 
+/// The file holding the samples of the NRRD at `path` when they are detached ("data file: NAME",
+/// relative to the header's folder), from the header alone (its lines up to the blank line, at
+/// most 1 MiB read); empty when they are attached or the file is no readable NRRD header (which
+/// load_nrrd then names). For the checks a tool makes before its work: such a file is an input.
+std::string nrrd_data_path(const std::string& path);
+
 }  // namespace geolens

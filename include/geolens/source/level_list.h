@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "geolens/source/source_file.h"
 
@@ -42,5 +43,10 @@ namespace geolens {
 /// fails to decode or its decoded size is not its header's.
 SourceFile open_level_list(const std::string& path, const SourceFileOptions& options = {},
                            size_t cache_bytes = size_t(1) << 30);
+
+/// The images the level list at `path` names, in its order, each resolved against the list's
+/// folder (the paths open_level_list reads); empty if the list cannot be read. For the checks a
+/// tool makes before its work: every one is an input.
+std::vector<std::string> level_list_images(const std::string& path);
 
 }  // namespace geolens

@@ -59,6 +59,12 @@ SourceFile image_source(const Image& image);
 /// can, the element or line at fault.
 SourceFile open_source(const std::string& path, const SourceFileOptions& options = {});
 
+/// The files open_source(path) reads besides `path` itself, found without decoding anything: a
+/// level list's images (level_list_images), a NRRD's detached data file (nrrd_data_path); none
+/// for other kinds (a tile folder is a folder: every file in it is read). For the checks a tool
+/// makes before its work, so that no output overwrites one of them.
+std::vector<std::string> source_parts(const std::string& path);
+
 /// `warp` (its source in frame pixels) rendered from `file` as every tool shows it: from
 /// file.source at file.scale and file.level_band (which replace those of `options`) at
 /// options.width x options.height, then file.overlay drawn over it (the output made RGB first).
