@@ -24,8 +24,43 @@ std::string temporary_path(const std::string& path) {
       .string();
 }
 
+OutputTarget output_target(const std::string& path) {
+  OutputTarget out{path};
+  std::error_code error;
+  if (fs::is_symlink(fs::symlink_status(path, error))) {
+    const fs::path target = fs::canonical(path, error);
+    if (!error)
+      out.target = target.string();
+    else  // a link to nothing, or one that names no path (/dev/stdout -> pipe:[N]): written through
+      out.dangling = !fs::exists(fs::status(path, error));
+  }
+  const fs::file_status status = fs::status(out.target, error);
+  out.in_place = !out.dangling && fs::exists(status) && !fs::is_regular_file(status) &&
+                 !fs::is_directory(status);
+  return out;
+}
+
+std::string write_in_place(const std::string& target, const void* data, size_t size) {
+  std::string reason;
+  if (std::FILE* file = std::fopen(target.c_str(), "wb")) {
+    if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);
+    if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
+  } else {
+    reason = std::strerror(errno);
+  }
+  return reason;
+}
+
 void write_file(const std::string& path, const void* data, size_t size) {
-  const std::string temporary = temporary_path(path);
+  const OutputTarget out = output_target(path);
+  if (out.dangling)
+    throw IoError("write_file: cannot write '" + path + "': a symbolic link to a missing file");
+  if (out.in_place) {
+    const std::string reason = write_in_place(out.target, data, size);
+    if (!reason.empty()) throw IoError("write_file: cannot write '" + path + "': " + reason);
+    return;
+  }
+  const std::string temporary = temporary_path(out.target);
   std::string reason;
   if (std::FILE* file = std::fopen(temporary.c_str(), "wb")) {
     if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);
@@ -35,7 +70,7 @@ void write_file(const std::string& path, const void* data, size_t size) {
   }
   std::error_code error;
   if (reason.empty()) {
-    fs::rename(temporary, path, error);
+    fs::rename(temporary, out.target, error);
     if (error) reason = error.message();
   }
   if (!reason.empty()) {

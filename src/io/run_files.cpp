@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -61,23 +60,13 @@ void RunFiles::add_folder(const std::string& option, const std::string& path) {
 
 void RunFiles::add_output(const std::string& option, const std::string& path) {
   namespace fs = std::filesystem;
-  Output o{option, path, path, "", false, false};
+  const OutputTarget out = output_target(path);
   std::error_code error;
-  if (fs::is_symlink(fs::symlink_status(path, error))) {
-    const fs::path target = fs::canonical(path, error);
-    if (!error)
-      o.target = target.string();
-    else  // a link to nothing, or one that names no path (/dev/stdout -> pipe:[N]): written through
-      o.dangling = !fs::exists(fs::status(path, error));
-  }
-  const fs::file_status status = fs::status(o.target, error);
-  o.in_place = !o.dangling && fs::exists(status) && !fs::is_regular_file(status) &&
-               !fs::is_directory(status);
   // An output written in place is staged where the run may make files, with its extension.
-  o.temporary = temporary_path(
-      o.in_place ? (fs::temp_directory_path(error) / fs::path(o.target).filename()).string()
-                 : o.target);
-  outputs_.push_back(std::move(o));
+  const std::string temporary = temporary_path(
+      out.in_place ? (fs::temp_directory_path(error) / fs::path(out.target).filename()).string()
+                   : out.target);
+  outputs_.push_back({option, path, out.target, temporary, out.dangling, out.in_place});
 }
 
 void RunFiles::check() const {
@@ -145,14 +134,7 @@ void RunFiles::commit() {
     // A device or a FIFO: its bytes written into it, the staged file removed either way.
     const std::string bytes = read_file(o.temporary, "RunFiles::commit", "staged");
     std::filesystem::remove(o.temporary, error);
-    std::string reason;
-    if (std::FILE* file = std::fopen(o.target.c_str(), "wb")) {
-      if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())
-        reason = std::strerror(errno);
-      if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
-    } else {
-      reason = std::strerror(errno);
-    }
+    const std::string reason = write_in_place(o.target, bytes.data(), bytes.size());
     if (!reason.empty()) throw IoError("cannot write '" + o.path + "': " + reason);
   }
   committed_ = true;

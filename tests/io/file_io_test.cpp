@@ -19,6 +19,16 @@ namespace fs = std::filesystem;
 
 using FileIo = testing::ScratchFolderTest;
 
+// What write_file throws for `path`, empty if it does not.
+std::string write_file_error(const std::string& path) {
+  try {
+    write_file(path, "x");
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST_F(FileIo, WritesTheWholeContentAndLeavesNoTemporary) {
   const std::string path = (dir_ / "a.txt").string();
   write_file(path, "first");
@@ -50,6 +60,32 @@ TEST_F(FileIo, TemporariesSitBesideTheirFileKeepTheExtensionAndNeverRepeat) {
   EXPECT_EQ(a.parent_path(), dir_);
   EXPECT_EQ(a.extension(), ".png");
   EXPECT_EQ(a.filename().string().rfind("out.tmp-", 0), 0u) << a;
+}
+
+// The library's own writes (the viewer's exports, Python's) follow links and write into a FIFO
+// or a device rather than replace it, as the CLI's outputs do.
+TEST_F(FileIo, WritesThroughLinksAndIntoSpecialFiles) {
+  const std::string real = (dir_ / "real.txt").string(), link = (dir_ / "link.txt").string();
+  write_file(real, "old");
+  fs::create_symlink("real.txt", link);
+  write_file(link, "new");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read_file(real, "test", "text"), "new");
+  fs::create_symlink("missing.txt", dir_ / "dangling.txt");
+  EXPECT_THROW(write_file((dir_ / "dangling.txt").string(), "x"), IoError);
+  EXPECT_FALSE(fs::exists(dir_ / "missing.txt"));
+  const std::string fifo = (dir_ / "fifo.txt").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string read_back;
+  std::thread reader([&] {
+    std::ifstream in(fifo);
+    read_back.assign(std::istreambuf_iterator<char>(in), {});
+  });
+  write_file(fifo, "through");
+  reader.join();
+  EXPECT_EQ(read_back, "through");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_NE(write_file_error("/dev/full"), "");
 }
 
 TEST_F(FileIo, SameFileSeesThroughSpellings) {

@@ -12,10 +12,24 @@ namespace geolens {
 /// two temporaries of one path never collide, within a process or between processes.
 std::string temporary_path(const std::string& path);
 
-/// Writes `size` bytes at `data` to a temporary file in the folder of `path` (temporary_path)
-/// and renames it into place,
-/// so `path` is never left partial. Throws IoError naming `path` and the reason if writing or
-/// renaming fails (the temporary is removed).
+/// The file an output named `path` writes. `target` is `path`, or the file a symbolic link
+/// names (the link stays: /dev/stdout is written through, not replaced); `dangling` when `path`
+/// is a link to nothing; `in_place` when the target exists and is not a regular file or a
+/// folder (a device, a FIFO): written into, never replaced by a renamed temporary.
+struct OutputTarget {
+  std::string target;
+  bool dangling = false, in_place = false;
+};
+OutputTarget output_target(const std::string& path);
+
+/// Writes `size` bytes at `data` into the existing file `target` (a device, a FIFO), opened for
+/// writing; returns the reason it failed, empty if it did not.
+std::string write_in_place(const std::string& target, const void* data, size_t size);
+
+/// Writes `size` bytes at `data` to `path` (output_target: through a link, into a device or a
+/// FIFO), else to a temporary file in its folder (temporary_path) renamed into place, so `path`
+/// is never left partial. Throws IoError naming `path` and the reason if `path` is a link to
+/// nothing or writing or renaming fails (the temporary is removed).
 void write_file(const std::string& path, const void* data, size_t size);
 /// The same for text.
 void write_file(const std::string& path, const std::string& content);
