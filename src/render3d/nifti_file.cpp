@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -115,6 +116,10 @@ ScalarVolume load_nifti(const std::string& path) {
   require(volume.nx >= 1 && volume.ny >= 1 && volume.nz >= 1, f,
           where + "a volume of zero size (" + std::to_string(image->nx) + " x " +
               std::to_string(image->ny) + " x " + std::to_string(image->nz) + " voxels)");
+  require(uint64_t(volume.nx) * uint64_t(volume.ny) * uint64_t(volume.nz) <= kMaxVoxels, f,
+          where + std::to_string(volume.nx) + " x " + std::to_string(volume.ny) + " x " +
+              std::to_string(volume.nz) + " voxels, more than the " + std::to_string(kMaxVoxels) +
+              " read (2^28)");
   VoxelType type = VoxelType::uint8;
   require(voxel_type_of(image->datatype, type), f,
           where + "voxel type " + nifti_datatype_string(image->datatype) +

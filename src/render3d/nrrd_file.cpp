@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -179,6 +180,8 @@ ScalarVolume load_nrrd(const std::string& path) {
     volume.nz = int(sizes[2]);
     require(volume.nx > 0 && volume.ny > 0 && volume.nz > 0, f,
             bad("sizes", "a volume of zero size"));
+    require(uint64_t(sizes[0]) * uint64_t(sizes[1]) * uint64_t(sizes[2]) <= kMaxVoxels, f,
+            bad("sizes", "more than the " + std::to_string(kMaxVoxels) + " voxels read (2^28)"));
   }
   std::string encoding = field("encoding", true);
   require(encoding == "raw" || encoding == "gzip" || encoding == "gz", f,

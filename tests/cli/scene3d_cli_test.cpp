@@ -102,6 +102,11 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   expect_refused("magnify " + path("sphere.nrrd") + " --transfer bone" + lens,
                  "unknown transfer 'bone'");
   expect_refused("magnify " + path("cube.obj") + " --view 10" + lens, "is not AZ,EL");
+  // A header claiming more voxels than are read is refused before anything is allocated.
+  write("huge.nrrd",
+        "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 65536 65536 3\nencoding: gzip\n\nxx");
+  expect_refused("magnify " + path("huge.nrrd") + lens,
+                 "sizes: 65536 65536 3): more than the 268435456 voxels read");
   // A detached data file is an input: an output naming it is refused before any work (it was
   // overwritten).
   write("head.nrrd",
