@@ -40,44 +40,6 @@ std::vector<double> smoothed(const std::vector<uint8_t>& inside, int width, int 
   return out;
 }
 
-/// Marks the points of loop[first..last] (indices modulo the size) that Douglas-Peucker keeps
-/// between the kept ends first and last.
-void simplify(const std::vector<Eigen::Vector2d>& loop, size_t first, size_t last, double tolerance,
-              std::vector<char>& keep) {
-  const size_t n = loop.size();
-  double worst = -1;
-  size_t at = first;
-  for (size_t k = first + 1; k < last; ++k) {
-    const double d = segment_distance(loop[k % n], loop[first % n], loop[last % n]);
-    if (d > worst) {
-      worst = d;
-      at = k;
-    }
-  }
-  if (worst <= tolerance) return;
-  keep[at % n] = 1;
-  simplify(loop, first, at, tolerance, keep);
-  simplify(loop, at, last, tolerance, keep);
-}
-
-/// `loop` simplified: its first point and the point farthest from it kept, each half by
-/// Douglas-Peucker.
-std::vector<Eigen::Vector2d> simplified(const std::vector<Eigen::Vector2d>& loop,
-                                        double tolerance) {
-  const size_t n = loop.size();
-  size_t far = 0;
-  for (size_t k = 1; k < n; ++k)
-    if ((loop[k] - loop[0]).squaredNorm() > (loop[far] - loop[0]).squaredNorm()) far = k;
-  std::vector<char> keep(n, 0);
-  keep[0] = keep[far] = 1;
-  simplify(loop, 0, far, tolerance, keep);
-  simplify(loop, far, n, tolerance, keep);
-  std::vector<Eigen::Vector2d> out;
-  for (size_t k = 0; k < n; ++k)
-    if (keep[k]) out.push_back(loop[k]);
-  return out;
-}
-
 }  // namespace
 
 std::vector<std::vector<Eigen::Vector2d>> mask_contours(const std::vector<uint8_t>& inside,
@@ -158,7 +120,7 @@ std::vector<std::vector<Eigen::Vector2d>> mask_contours(const std::vector<uint8_
       loop.push_back(crossing(edge));
       edge = next.at(edge);
     }
-    if (loop.size() >= 3) loops.push_back(simplified(loop, tolerance));
+    if (loop.size() >= 3) loops.push_back(simplify_loop(loop, tolerance));
   }
   return loops;
 }

@@ -121,6 +121,40 @@ void validate_polygon(const std::vector<Eigen::Vector2d>& vertices, const char* 
           first == n ? std::string() : edge(first) + " and " + edge(second) + " intersect");
 }
 
+std::vector<Eigen::Vector2d> simplify_loop(const std::vector<Eigen::Vector2d>& loop,
+                                           double tolerance) {
+  const size_t n = loop.size();
+  if (n < 3) return loop;
+  size_t far = 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((loop[k] - loop[0]).squaredNorm() > (loop[far] - loop[0]).squaredNorm()) far = k;
+  std::vector<char> keep(n, 0);
+  keep[0] = keep[far] = 1;
+  // Spans (first, last) of indices modulo n between two kept points, still to split.
+  std::vector<std::pair<size_t, size_t>> spans = {{0, far}, {far, n}};
+  while (!spans.empty()) {
+    const auto [first, last] = spans.back();
+    spans.pop_back();
+    double worst = -1;
+    size_t at = first;
+    for (size_t k = first + 1; k < last; ++k) {
+      const double d = segment_distance(loop[k % n], loop[first % n], loop[last % n]);
+      if (d > worst) {
+        worst = d;
+        at = k;
+      }
+    }
+    if (worst <= tolerance) continue;
+    keep[at % n] = 1;
+    spans.emplace_back(at, last);
+    spans.emplace_back(first, at);
+  }
+  std::vector<Eigen::Vector2d> out;
+  for (size_t k = 0; k < n; ++k)
+    if (keep[k]) out.push_back(loop[k]);
+  return out;
+}
+
 std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
   std::error_code error;
   require(!std::filesystem::is_directory(path, error), "read_polygon_file",

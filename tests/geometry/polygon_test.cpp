@@ -141,6 +141,39 @@ TEST_F(PolygonFile, RejectsMissingFilesAndDirectories) {
   EXPECT_THROW(read_polygon_file(::testing::TempDir()), InvalidInput);
 }
 
+// Every dropped point is within the tolerance of the simplified loop, corners are kept, and a
+// loop of a million points is simplified without recursion (a spiral-free circle here: 96 kept).
+TEST(SimplifyLoop, DropsOnlyPointsWithinTheToleranceAndKeepsCorners) {
+  Points l;  // the L with 50 points on each side
+  for (size_t k = 0; k < kL.size(); ++k)
+    for (int j = 0; j < 50; ++j)
+      l.push_back(kL[k] + (kL[(k + 1) % kL.size()] - kL[k]) * (j / 50.0) +
+                  Eigen::Vector2d(0.01 * std::sin(j), 0.01 * std::cos(j)));
+  const Points kept = simplify_loop(l, 0.1);
+  EXPECT_EQ(kept.size(), kL.size());
+  for (const Eigen::Vector2d& corner : kL) {
+    double nearest = 1e9;
+    for (const Eigen::Vector2d& p : kept) nearest = std::min(nearest, (p - corner).norm());
+    EXPECT_LT(nearest, 0.02);
+  }
+  auto distance_to = [](const Points& loop, const Eigen::Vector2d& p) {
+    double d = 1e9;
+    for (size_t k = 0; k < loop.size(); ++k)
+      d = std::min(d, segment_distance(p, loop[k], loop[(k + 1) % loop.size()]));
+    return d;
+  };
+  for (const Eigen::Vector2d& p : l) EXPECT_LE(distance_to(kept, p), 0.1);
+  Points circle;
+  for (int k = 0; k < 1000000; ++k) {
+    const double a = 2 * std::numbers::pi * k / 1000000;
+    circle.emplace_back(150 * std::cos(a), 150 * std::sin(a));
+  }
+  const Points round = simplify_loop(circle, 0.1);
+  EXPECT_GT(round.size(), 50u);
+  EXPECT_LT(round.size(), 200u);
+  for (int k = 0; k < 1000000; k += 997) EXPECT_LE(distance_to(round, circle[size_t(k)]), 0.1);
+}
+
 TEST(RasterizePolygon, MarksExactlyTheNodesInside) {
   for (const Points& poly : {kL, star(0.2)}) {
     const int width = 90, height = 85;

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <numbers>
 
 #include "geolens/core/errors.h"
 #include "geolens/io/image.h"
@@ -43,6 +45,19 @@ TEST_F(LensSpec, PolygonAndMaskFilesAreRead) {
   EXPECT_EQ(parse_lens_spec("mask:" + path("m.png"), 2, Profile::kGaussian, 0, 200, 100).size(),
             2u);
   EXPECT_EQ(lens_spec_file("mask:" + path("m.png"))->kind, "mask");
+  // A circle written as 10 000 vertices (0.09 px apart) is simplified to what a picture shows.
+  {
+    std::ofstream round(path("round.txt"));
+    for (int k = 0; k < 10000; ++k)
+      round << 100 + 40 * std::cos(2 * std::numbers::pi * k / 10000) << " "
+            << 50 + 40 * std::sin(2 * std::numbers::pi * k / 10000) << "\n";
+  }
+  const std::vector<Lens> round =
+      parse_lens_spec("polygon:" + path("round.txt"), 2, Profile::kGaussian, 0, 200, 100);
+  ASSERT_EQ(round.size(), 1u);
+  const size_t kept = round[0].region.outline()->size();
+  EXPECT_GT(kept, 20u);
+  EXPECT_LT(kept, 100u);
 }
 
 TEST_F(LensSpec, BadSpecsNameWhatIsWrong) {

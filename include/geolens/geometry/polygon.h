@@ -27,6 +27,15 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path);
 /// The distance from p to the segment a-b (to a where a == b), pixels.
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b);
+
+/// The closed loop `loop` simplified by Douglas and Peucker's algorithm: its first point and the
+/// point farthest from it kept, and between two kept points the farthest point of the loop from
+/// their segment kept while it is more than `tolerance` (pixels) from it, recursively (done with
+/// a stack of its own, so a loop of millions of points does not exhaust the call stack). Every
+/// dropped point is within `tolerance` of the simplified loop. O(n log n) typically, O(n^2) at
+/// worst.
+std::vector<Eigen::Vector2d> simplify_loop(const std::vector<Eigen::Vector2d>& loop,
+                                           double tolerance);
 /// Its square (no square root: for the nearest of many segments).
 double segment_squared_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                                 const Eigen::Vector2d& b);

@@ -15,10 +15,14 @@ namespace geolens {
 /// The syntax, for messages: "circle:CX,CY,R[:ZOOM], polygon:FILE[:ZOOM] or mask:FILE[:ZOOM]".
 extern const char* const kLensSpecSyntax;
 
+/// How far a polygon file's outline may move when it is simplified (simplify_loop), pixels.
+inline constexpr double kPolygonTolerance = 0.1;
+
 /// The lenses `spec` names (several for a mask of several blobs), each with the spec's zoom or
 /// `default_zoom`, `profile` and `footprint`, validated for a width x height source
-/// (validate_lens). Reads the polygon or mask file. Throws InvalidInput naming the spec and what
-/// is wrong with it.
+/// (validate_lens). Reads the polygon or mask file; a polygon's vertices are simplified to
+/// kPolygonTolerance (read_polygon_file, simplify_loop). Throws InvalidInput naming the spec and
+/// what is wrong with it.
 std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, Profile profile,
                                   double footprint, int width, int height);
 
