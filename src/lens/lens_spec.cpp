@@ -50,9 +50,10 @@ std::vector<Region> parse_regions(const std::vector<std::string>& parts, const s
     // Vertices within a tenth of a pixel of the outline without them add nothing a picture
     // shows, and cost: a circle written as 10 000 vertices took 63 s and failed with degenerate
     // triangles between vertices 0.09 px apart; simplified, it has 96 and solves as a circle.
-    const std::vector<Eigen::Vector2d> vertices =
-        simplify_loop(read_polygon_file(parts[1]), kPolygonTolerance);
-    validate_polygon(vertices, kFunction);
+    const std::vector<Eigen::Vector2d> read = read_polygon_file(parts[1]);
+    const std::vector<Eigen::Vector2d> vertices = simplify_loop(read, kPolygonTolerance);
+    // A polygon simplified to a segment was one (of zero area): named so, as read.
+    validate_polygon(vertices.size() < 3 ? read : vertices, kFunction);
     return {Region::polygon(vertices)};
   }
   if (parts[0] == "mask") {
