@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -71,8 +72,11 @@ void validate(const LensOptions& o) {
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
   require_mesh_vertices(o.mesh, "validate");
   if (o.draft_mesh != 0) require_mesh_vertices(o.draft_mesh, "validate");
-  require(std::isfinite(o.mesh_tolerance) && o.mesh_tolerance >= 0, "validate",
-          "mesh tolerance must be >= 0, got " + std::to_string(o.mesh_tolerance));
+  // Finer than a hundredth of a pixel shows nothing and refines without end (1e-9 ran away).
+  require(std::isfinite(o.mesh_tolerance) && (o.mesh_tolerance == 0 || o.mesh_tolerance >= 0.01),
+          "validate",
+          "mesh tolerance must be 0 (no refinement) or at least 0.01 pixels, got " +
+              (std::ostringstream() << o.mesh_tolerance).str());
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -15,6 +16,10 @@
 namespace geolens {
 
 namespace {
+
+// The largest width, radius or font size a style may give, pixels: a radius of 1e300 hung the
+// renderer, a huge width filled the frame at any zoom.
+constexpr double kMaxStylePixels = 1000;
 
 using Json = nlohmann::json;
 
@@ -61,11 +66,15 @@ class Reader {
     return {v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, v.size() == 4 ? v[3] / 255.0 : 1.0};
   }
 
-  double number(const Json& j, const std::string& where, double min) const {
+  double number(const Json& j, const std::string& where, double min,
+                double max = std::numeric_limits<double>::max()) const {
     if (!j.is_number()) fail(where, "'" + j.dump() + "' is not a number");
     const double value = j.get<double>();
-    if (!std::isfinite(value) || value < min)
-      fail(where, j.dump() + " is out of range (at least " + Json(min).dump() + ")");
+    if (!std::isfinite(value) || value < min || value > max)
+      fail(where, j.dump() + " is out of range (at least " + Json(min).dump() +
+                      (max < std::numeric_limits<double>::max() ? ", at most " + Json(max).dump()
+                                                                : std::string()) +
+                      ")");
     return value;
   }
 
@@ -94,13 +103,13 @@ class Reader {
       } else if (key == "base") {
         l.base = number(value, at, -1e9);
       } else if (key == "size") {
-        l.size = number(value, at, 1);
+        l.size = number(value, at, 1, kMaxStylePixels);
       } else if (key == "color") {
         l.color = color(value, at);
       } else if (key == "halo") {
         l.halo = color(value, at);
       } else if (key == "halo_width") {
-        l.halo_width = number(value, at, 0);
+        l.halo_width = number(value, at, 0, kMaxStylePixels);
       }
     }
     return l;
@@ -148,9 +157,9 @@ class Reader {
       } else if (key == "stroke") {
         l.stroke = color(value, at);
       } else if (key == "width") {
-        l.width = number(value, at, 0);
+        l.width = number(value, at, 0, kMaxStylePixels);
       } else if (key == "radius") {
-        l.radius = number(value, at, 0);
+        l.radius = number(value, at, 0, kMaxStylePixels);
       } else if (key == "min_zoom") {
         l.min_zoom = number(value, at, 0);
       } else if (key == "max_zoom") {

@@ -75,6 +75,8 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "mesh");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance -1",
                  "mesh tolerance");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance 1e-9",
+                 "mesh tolerance must be 0 (no refinement) or at least 0.01 pixels, got 1e-09");
   expect_refused("magnify " + in + " -o " + path("nowhere/out.png") + " --lens circle:50,50,20",
                  "nowhere");
   expect_refused("magnify " + in + " -o " + in + " --lens circle:50,50,20", "input");

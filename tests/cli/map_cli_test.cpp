@@ -146,6 +146,8 @@ TEST_F(MapCli, RefusesBadInputWithOneLineAndExitTwo) {
   expect_refused("map " + path("in.csv") + size + out, "the output has the input's format");
   expect_refused("map " + path("in.csv") + kLens, "--image FILE or --size WxH");
   expect_refused("map " + path("in.csv") + size + " --max-segment 0", "--max-segment");
+  expect_refused("map " + path("in.csv") + size + " --max-segment 5e-5",
+                 "--max-segment: must be at least 0.01 pixels");
   expect_refused("map " + path("missing.csv") + size, "missing.csv");
   expect_refused("map " + path("in.csv") + " --image " + path("missing.png") + kLens,
                  "missing.png");

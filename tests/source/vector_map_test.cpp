@@ -231,6 +231,9 @@ TEST_F(VectorMapTest, BadStyleIsRefusedNamingTheFileAndTheKey) {
   expect_names(refusal(R"({"layers": [{"geometry": "curve"}]})"), "layers[0].geometry");
   expect_names(refusal(R"({"extent": [10, 0, 5, 20]})"), "extent");
   expect_names(refusal("{\"layers\": [\n{\"fill\": }]}"), "line 2");
+  // Sizes a renderer would spend without bound on (a point radius of 1e300 hung it).
+  expect_names(refusal(R"({"layers": [{"radius": 1e300}]})"), "layers[0].radius: 1e+300");
+  expect_names(refusal(R"({"layers": [{"width": 5000}]})"), "at most 1000");
   // A malformed GeoJSON names its file and the element.
   write_text(path("bad.geojson"), R"({"type": "FeatureCollection", "features": [
     {"type": "Feature", "properties": null, "geometry": {"type": "Point", "coordinates": [1]}}]})");

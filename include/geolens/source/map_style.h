@@ -98,8 +98,9 @@ MapStyle default_map_style();
 /// @param name  where the text came from (a file name), for messages
 /// Throws InvalidInput("map_style: '<name>': <key path>: <what>"), e.g. "layers[2].fill: '#12'
 /// is not a colour", for text that is not JSON (with its line and column), an unknown key, a
-/// value of the wrong kind or out of range (widths, radii >= 0, a label size >= 1, min_zoom <=
-/// max_zoom, an extent with west < east and south < north within +-180 and +-90).
+/// value of the wrong kind or out of range (widths and radii in [0, 1000], a label size in
+/// [1, 1000], min_zoom <= max_zoom, an extent with west < east and south < north within +-180
+/// and +-90).
 MapStyle parse_map_style(const std::string& text, const std::string& name);
 
 /// parse_map_style of the file at `path`. Throws InvalidInput naming the path if it cannot be
