@@ -91,8 +91,15 @@ def test_points_outside_the_image_map_to_nan_rows(solved):
 def test_bad_points_raise_value_error(solved):
     with pytest.raises(ValueError, match=r"Warp.forward: points must be an N x 2 array"):
         solved.warp.forward(np.zeros(2))
-    with pytest.raises(ValueError, match="row 0 .* is not finite"):
+    with pytest.raises(ValueError, match="row 0 .* is neither finite nor a row of NaNs"):
         solved.warp.inverse(np.array([[np.nan, 1.0]]))
+
+
+def test_forward_and_inverse_chain_through_nan_rows(solved):
+    points = np.array([[500.0, 500.0], [-50.0, 10.0]])
+    back = solved.warp.inverse(solved.warp.forward(points))
+    assert back[0] == pytest.approx(points[0], abs=1e-6)
+    assert np.isnan(back[1]).all()
 
 
 def test_stats_have_the_keys_and_figures_of_the_clis(solved, run_cli):

@@ -132,13 +132,14 @@ void require_finite(const Eigen::Vector2d& p, const char* function) {
         "the point (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ") is not finite");
 }
 
+// A row of NaNs, what a batch returns for a point in no triangle, goes through as such, so a
+// forward batch chains into an inverse one; any other non-finite row is refused.
 void require_finite_rows(const Eigen::MatrixX2d& points, const char* function) {
   if (points.allFinite()) return;
-  Eigen::Index bad = 0;
-  while (points.row(bad).allFinite()) ++bad;
-  require(false, function,
-          "points row " + std::to_string(bad) + " = (" + std::to_string(points(bad, 0)) + ", " +
-              std::to_string(points(bad, 1)) + ") is not finite");
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    require(points.row(i).allFinite() || points.row(i).array().isNaN().all(), function,
+            "points row " + std::to_string(i) + " = (" + std::to_string(points(i, 0)) + ", " +
+                std::to_string(points(i, 1)) + ") is neither finite nor a row of NaNs");
 }
 
 WarpMesh validated(WarpMesh mesh) {
@@ -175,6 +176,10 @@ struct WarpMap::Impl {
                        const Eigen::MatrixX2d& points) const {
     Eigen::MatrixX2d out(points.rows(), 2);
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      if (!points.row(i).allFinite()) {  // a row of NaNs (require_finite_rows)
+        out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
       const Hit hit = from.locate(points.row(i).transpose());
       if (hit.f < 0)
         out.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -209,6 +209,12 @@ TEST(WarpMap, OutsideTheCoveredAreaIsNowhere) {
   }
   EXPECT_TRUE(map.forward_batch(P).array().isNaN().all());
   EXPECT_TRUE(map.inverse_batch(P).array().isNaN().all());
+  // A batch's NaN rows chain into the next batch: nowhere stays nowhere, the rest maps back.
+  Eigen::MatrixX2d mixed(2, 2);
+  mixed << 400, 300, -0.5, 300;
+  const Eigen::MatrixX2d back = map.inverse_batch(map.forward_batch(mixed));
+  EXPECT_LT((back.row(0) - mixed.row(0)).norm(), 1e-9);
+  EXPECT_TRUE(back.row(1).array().isNaN().all());
   // The image's corners and sides, and every mesh vertex (on the edges of its triangles).
   for (const Eigen::Vector2d& p : std::vector<Eigen::Vector2d>{
            {0, 0}, {800, 0}, {800, 600}, {0, 600}, {0, 123.4}, {800, 456.7}, {321.5, 600}}) {

@@ -69,7 +69,8 @@ class WarpMap {
   /// forward() of every row of `points` (#P x 2, source pixels): #P x 2 screen pixels, a row of
   /// NaNs where a point is in no triangle. Named apart from forward() so that forward({x, y})
   /// is not ambiguous with MatrixX2d's (rows, columns) constructor. Runs on the calling thread.
-  /// Throws InvalidInput naming the first row that is not finite.
+  /// A row of NaNs gives a row of NaNs (so inverse_batch(forward_batch(p)) chains); throws
+  /// InvalidInput naming the first other row that is not finite.
   Eigen::MatrixX2d forward_batch(const Eigen::MatrixX2d& points) const;
   /// inverse() of every row of `points` (#P x 2, screen pixels): #P x 2 source pixels, NaN rows
   /// where a point is in no triangle. As forward_batch() otherwise.
