@@ -102,6 +102,23 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   expect_refused("magnify " + path("sphere.nrrd") + " --transfer bone" + lens,
                  "unknown transfer 'bone'");
   expect_refused("magnify " + path("cube.obj") + " --view 10" + lens, "is not AZ,EL");
+  // Element counts the data cannot hold are refused before a row is read (a PLY with an element
+  // of 10^18 rows and no properties hung; one claiming 2^31 vertices allocated them first).
+  const std::string ply = "ply\nformat binary_little_endian 1.0\n";
+  write("rows.ply", ply +
+                        "element vertex 3\nproperty float x\nproperty float y\nproperty float "
+                        "z\nelement junk 1000000000000000000\nelement face 1\nproperty list "
+                        "uchar int vertex_indices\nend_header\n" +
+                        std::string(49, '\0'));
+  expect_refused("magnify " + path("rows.ply") + lens,
+                 "element 'junk' has 1000000000000000000 rows but no properties");
+  write("many.ply", ply +
+                        "element vertex 2147483647\nproperty float x\nproperty float y\nproperty "
+                        "float z\nelement face 1\nproperty list uchar int "
+                        "vertex_indices\nend_header\n" +
+                        std::string(49, '\0'));
+  expect_refused("magnify " + path("many.ply") + lens,
+                 "element 'vertex' claims 2147483647 rows, more than its 49 bytes of data hold");
   // A header claiming more voxels than are read is refused before anything is allocated.
   write("huge.nrrd",
         "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 65536 65536 3\nencoding: gzip\n\nxx");
