@@ -94,8 +94,10 @@ std::vector<Lens> parse_lenses(const LensArgs& a, int width, int height) {
   const Profile profile = parse_profile(a.profile);
   std::vector<Lens> lenses;
   for (const std::string& spec : a.lenses) {
-    for (Lens& lens : parse_lens_spec(spec, a.zoom, profile, a.footprint, width, height))
+    std::vector<std::string> warnings;
+    for (Lens& lens : parse_lens_spec(spec, a.zoom, profile, a.footprint, width, height, &warnings))
       lenses.push_back(std::move(lens));
+    for (const std::string& w : warnings) std::cerr << "geolens: warning: " << w << "\n";
   }
   return lenses;
 }

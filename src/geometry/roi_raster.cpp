@@ -152,7 +152,7 @@ Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
   return Region(polygon_shape(vertices));
 }
 
-std::vector<Region> Region::from_mask(const Image& mask) {
+std::vector<Region> Region::from_mask(const Image& mask, size_t* dropped) {
   require(mask.width > 0 && mask.height > 0 && mask.channels >= 1 &&
               mask.pixels.size() == size_t(mask.width) * mask.height * mask.channels,
           "Region::from_mask",
@@ -163,6 +163,7 @@ std::vector<Region> Region::from_mask(const Image& mask) {
   // 8-connected blobs of non-zero first-channel pixels, labelled in raster order.
   struct Blob {
     int x0, y0, x1, y1;  // pixel bounding box, inclusive
+    int pixels = 0;
   };
   std::vector<Blob> blobs;
   std::vector<int> label(size_t(w) * h, -1);
@@ -171,12 +172,13 @@ std::vector<Region> Region::from_mask(const Image& mask) {
     for (int x = 0; x < w; ++x) {
       if (!mask.at(x, y)[0] || label[size_t(y) * w + x] >= 0) continue;
       const int id = int(blobs.size());
-      Blob blob{x, y, x, y};
+      Blob blob{x, y, x, y, 0};
       label[size_t(y) * w + x] = id;
       stack.assign(1, y * w + x);
       while (!stack.empty()) {
         const int px = stack.back() % w, py = stack.back() / w;
         stack.pop_back();
+        ++blob.pixels;
         blob.x0 = std::min(blob.x0, px);
         blob.x1 = std::max(blob.x1, px);
         blob.y0 = std::min(blob.y0, py);
@@ -193,10 +195,17 @@ std::vector<Region> Region::from_mask(const Image& mask) {
     }
   }
   require(!blobs.empty(), "Region::from_mask", "the mask has no non-zero pixel");
+  const size_t specks = size_t(std::count_if(
+      blobs.begin(), blobs.end(), [](const Blob& b) { return b.pixels < kMinMaskBlobPixels; }));
+  require(specks < blobs.size(), "Region::from_mask",
+          "every blob of the mask (" + std::to_string(blobs.size()) + ") has fewer than " +
+              std::to_string(kMinMaskBlobPixels) + " pixels");
+  if (dropped) *dropped = specks;
 
   std::vector<Region> regions;
   for (size_t id = 0; id < blobs.size(); ++id) {
     const Blob& b = blobs[id];
+    if (b.pixels < kMinMaskBlobPixels) continue;
     // One node per pixel centre, the blob's box padded by one outside pixel on every side.
     const int width = b.x1 - b.x0 + 3, height = b.y1 - b.y0 + 3;
     std::vector<uint8_t> inside(size_t(width) * height, 0);

@@ -34,7 +34,7 @@ double parse_number(const std::string& text, const std::string& what, const std:
 }
 
 std::vector<Region> parse_regions(const std::vector<std::string>& parts, const std::string& spec,
-                                  int width, int height) {
+                                  int width, int height, std::vector<std::string>* warnings) {
   if (parts[0] == "circle") {
     const std::vector<std::string> numbers = split(parts[1], ',');
     require(numbers.size() == 3, kFunction,
@@ -62,7 +62,15 @@ std::vector<Region> parse_regions(const std::vector<std::string>& parts, const s
             "mask '" + parts[1] + "' is " + std::to_string(mask.width) + "x" +
                 std::to_string(mask.height) + " but the image is " + std::to_string(width) + "x" +
                 std::to_string(height));
-    return Region::from_mask(mask);
+    size_t dropped = 0;
+    std::vector<Region> blobs = Region::from_mask(mask, &dropped);
+    if (dropped > 0 && warnings)
+      warnings->push_back("mask '" + parts[1] + "': " + std::to_string(dropped) + " blob" +
+                          (dropped == 1 ? "" : "s") + " of fewer than " +
+                          std::to_string(Region::kMinMaskBlobPixels) +
+                          " pixels left out (speckle); " + std::to_string(blobs.size()) + " lens" +
+                          (blobs.size() == 1 ? "" : "es") + " kept");
+    return blobs;
   }
   throw InvalidInput(std::string(kFunction) + ": expected " + kLensSpecSyntax + ", got '" + spec +
                      "'");
@@ -71,13 +79,14 @@ std::vector<Region> parse_regions(const std::vector<std::string>& parts, const s
 }  // namespace
 
 std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, Profile profile,
-                                  double footprint, int width, int height) {
+                                  double footprint, int width, int height,
+                                  std::vector<std::string>* warnings) {
   const std::vector<std::string> parts = split(spec, ':');
   require(parts.size() >= 2 && parts.size() <= 3, kFunction,
           std::string("expected ") + kLensSpecSyntax + ", got '" + spec + "'");
   const double zoom = parts.size() == 3 ? parse_number(parts[2], "zoom", spec) : default_zoom;
   std::vector<Lens> lenses;
-  for (Region& region : parse_regions(parts, spec, width, height)) {
+  for (Region& region : parse_regions(parts, spec, width, height, warnings)) {
     lenses.push_back(Lens{std::move(region), zoom, profile, footprint});
     validate_lens(lenses.back(), width, height);
   }

@@ -289,16 +289,19 @@ TEST(MaskRegion, EachBlobIsARegionWithItsOwnBoundsAndDepth) {
 }
 
 TEST(MaskRegion, BlobsAreEightConnectedInTheFirstChannel) {
-  Image mask(8, 6, 3, 0);
-  mask.at(2, 2)[0] = 1;  // a diagonal pair: one blob
-  mask.at(3, 3)[0] = 200;
-  mask.at(6, 1)[1] = 255;  // only the second channel: not part of the mask
+  Image mask(10, 8, 3, 0);
+  for (int k = 0; k < 2; ++k)  // two 2 x 2 squares touching at a corner: one blob
+    for (int j = 0; j < 2; ++j) {
+      mask.at(2 + k, 2 + j)[0] = 1;
+      mask.at(4 + k, 4 + j)[0] = 200;
+    }
+  for (int k = 0; k < 4; ++k) mask.at(8, 1 + k)[1] = 255;  // second channel: not the mask
   const std::vector<Region> regions = Region::from_mask(mask);
   ASSERT_EQ(regions.size(), 1u);
   EXPECT_TRUE(regions[0].bounds().isApprox(
-      Eigen::AlignedBox2d(Eigen::Vector2d(2, 2), Eigen::Vector2d(4, 4))));
+      Eigen::AlignedBox2d(Eigen::Vector2d(2, 2), Eigen::Vector2d(6, 6))));
   EXPECT_GT(regions[0].depth({2.5, 2.5}), 0);
-  EXPECT_EQ(regions[0].depth({6.5, 1.5}), 0);
+  EXPECT_EQ(regions[0].depth({8.5, 1.5}), 0);
 }
 
 TEST(MaskRegion, RejectsAnEmptyOrMalformedMask) {

@@ -45,6 +45,24 @@ TEST_F(LensSpec, PolygonAndMaskFilesAreRead) {
   EXPECT_EQ(parse_lens_spec("mask:" + path("m.png"), 2, Profile::kGaussian, 0, 200, 100).size(),
             2u);
   EXPECT_EQ(lens_spec_file("mask:" + path("m.png"))->kind, "mask");
+  // Speckle (blobs under 4 pixels) is left out, said once; a mask of nothing but speckle is
+  // refused.
+  for (int k = 0; k < 50; ++k) mask.at(40 + 2 * k, 90 + (k % 3))[0] = 1;
+  save_image(path("speckled.png"), mask);
+  std::vector<std::string> warnings;
+  EXPECT_EQ(
+      parse_lens_spec("mask:" + path("speckled.png"), 2, Profile::kGaussian, 0, 200, 100, &warnings)
+          .size(),
+      2u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("50 blobs of fewer than 4 pixels left out (speckle); 2 lenses kept"),
+            std::string::npos)
+      << warnings[0];
+  Image specks(200, 100, 1);
+  for (int k = 0; k < 50; ++k) specks.at(4 * k % 200, 2 * k % 100)[0] = 1;
+  save_image(path("specks.png"), specks);
+  EXPECT_THROW(parse_lens_spec("mask:" + path("specks.png"), 2, Profile::kGaussian, 0, 200, 100),
+               InvalidInput);
   // A circle written as 10 000 vertices (0.09 px apart) is simplified to what a picture shows.
   {
     std::ofstream round(path("round.txt"));

@@ -70,9 +70,12 @@ class Region {
   /// one simple polygon that encloses its area within 5 % and is seen whole from its peak (no
   /// notch facing away from it, which the focus lens cannot open) is that polygon, so a lens's mesh
   /// follows its boundary (outline() gives it); any other (with a hole, a thin part, a deep notch)
-  /// is its pixel squares. Either is kind "mask" with no anchors. Throws InvalidInput for an empty
-  /// mask.
-  static std::vector<Region> from_mask(const Image& mask);
+  /// is its pixel squares. Either is kind "mask" with no anchors. Blobs of fewer than
+  /// kMinMaskBlobPixels pixels (speckle: a noisy mask of 961 one-pixel blobs made 961 lenses) are
+  /// left out and counted in `*dropped` if given. Throws InvalidInput for an empty mask or one
+  /// whose every blob is that small.
+  static constexpr int kMinMaskBlobPixels = 4;
+  static std::vector<Region> from_mask(const Image& mask, size_t* dropped = nullptr);
   /// Any other kind of region; throws InvalidInput for a null shape.
   explicit Region(std::shared_ptr<const RegionShape> shape);
 

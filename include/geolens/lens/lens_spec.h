@@ -21,10 +21,12 @@ inline constexpr double kPolygonTolerance = 0.1;
 /// The lenses `spec` names (several for a mask of several blobs), each with the spec's zoom or
 /// `default_zoom`, `profile` and `footprint`, validated for a width x height source
 /// (validate_lens). Reads the polygon or mask file; a polygon's vertices are simplified to
-/// kPolygonTolerance (read_polygon_file, simplify_loop). Throws InvalidInput naming the spec and
-/// what is wrong with it.
+/// kPolygonTolerance (read_polygon_file, simplify_loop). A mask's blobs of fewer than
+/// Region::kMinMaskBlobPixels pixels are left out, said in one line added to `warnings` if given.
+/// Throws InvalidInput naming the spec and what is wrong with it.
 std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, Profile profile,
-                                  double footprint, int width, int height);
+                                  double footprint, int width, int height,
+                                  std::vector<std::string>* warnings = nullptr);
 
 /// A file a spec reads: `kind` "polygon" or "mask", `path` its FILE.
 struct LensSpecFile {
