@@ -62,6 +62,11 @@ Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
   const int format = deep ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8;
   size_t size = 0;
   check(spng_decoded_image_size(ctx.get(), format, &size), "PNG");
+  // 2^28 pixels at 16 bits a sample would be 2 GiB of RGBA before the image is made.
+  if (size > kMaxDecodedBytes)
+    throw CodecError("PNG: " + std::to_string(ihdr.width) + " x " + std::to_string(ihdr.height) +
+                     " pixels at " + std::to_string(int(ihdr.bit_depth)) + " bits decode to " +
+                     std::to_string(size) + " bytes, more than geolens reads (2^30)");
   std::vector<uint8_t> rgba(size);
   check(spng_decode_image(ctx.get(), rgba.data(), size, format, SPNG_DECODE_TRNS), "PNG data");
   Image image(int(ihdr.width), int(ihdr.height), channels);

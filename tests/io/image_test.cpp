@@ -308,6 +308,16 @@ TEST_F(ImageFileTest, DamagedFilesAreRefusedWithOneLineNamingTheFileAndTheFault)
                                     chunk("IDAT", zlib_stored("")) + chunk("IEND", ""));
   EXPECT_NE(message("huge.png").find("more than geolens reads"), std::string::npos)
       << message("huge.png");
+  // 16384 x 16384 pixels (2^28, allowed) at 16 bits RGBA would decode through 2 GiB: refused.
+  const std::string deep =
+      big_endian(16384) + big_endian(16384) + char(16) + char(6) + std::string(3, '\0');
+  write_bytes(path("deep.png"), std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", deep) +
+                                    chunk("IDAT", zlib_stored("")) + chunk("IEND", ""));
+  EXPECT_NE(message("deep.png")
+                .find("at 16 bits decode to 2147483648 bytes, more than geolens "
+                      "reads (2^30)"),
+            std::string::npos)
+      << message("deep.png");
   // Neither format: said so.
   write_bytes(path("text.png"), "hello");
   EXPECT_NE(message("text.png").find("not a PNG or JPEG file"), std::string::npos);
