@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <vector>
 
 #include "geolens/core/errors.h"
@@ -77,19 +78,31 @@ std::string header_problem(const std::string& path) {
     if (dim[k] <= 0)
       return "a volume of zero size (dim[" + std::to_string(k) + "] = " + std::to_string(dim[k]) +
              ")";
+  // libnifti keeps the offset in an int and reads from byte 348 when it does not fit, so a
+  // vox_offset of 3e9 read the wrong bytes instead of being refused.
+  uint32_t offset_bits;
+  std::memcpy(&offset_bits, header + 108, 4);
+  if (swapped) offset_bits = __builtin_bswap32(offset_bits);
+  float vox_offset;
+  std::memcpy(&vox_offset, &offset_bits, 4);
+  if (!(vox_offset >= 0 && vox_offset < 2147483648.0f))
+    return "the data offset (vox_offset) " + (std::ostringstream() << vox_offset).str() +
+           " is negative or beyond 2^31 bytes";
   return "";
 }
 
-/// The bytes the file holds, uncompressed (zlib reads plain and gzipped files alike); -1 if it
-/// cannot be read. libnifti 3.0.1 zero-fills a short read and reports success, so the reader
-/// checks the size itself.
-long long data_size(const std::string& path) {
+/// The bytes the file holds, uncompressed (zlib reads plain and gzipped files alike), counted up
+/// to `enough` (a gzip bomb is not inflated past what the header needs); -1 if it cannot be read.
+/// libnifti 3.0.1 zero-fills a short read and reports success, so the reader checks the size
+/// itself.
+long long data_size(const std::string& path, long long enough) {
   gzFile file = gzopen(path.c_str(), "rb");
   if (file == nullptr) return -1;
   std::vector<char> buffer(size_t(1) << 20);
   long long total = 0;
   int got = 0;
-  while ((got = gzread(file, buffer.data(), unsigned(buffer.size()))) > 0) total += got;
+  while (total < enough && (got = gzread(file, buffer.data(), unsigned(buffer.size()))) > 0)
+    total += got;
   gzclose(file);
   return got < 0 ? -1 : total;
 }
@@ -130,7 +143,11 @@ ScalarVolume load_nifti(const std::string& path) {
       "the header claims " + std::to_string(volume.nx) + " x " + std::to_string(volume.ny) + " x " +
       std::to_string(volume.nz) + (image->nvox > count ? " x ..." : "") + " " +
       detail::voxel_type_name(type) + " voxels (" + std::to_string(bytes) + " bytes)";
-  const long long size = data_size(image->iname != nullptr ? image->iname : path);
+  require(bytes <= kMaxVolumeBytes, f,
+          where + claim + ", more than the " + std::to_string(kMaxVolumeBytes) +
+              " bytes of samples read (2^30)");
+  const long long size = data_size(image->iname != nullptr ? image->iname : path,
+                                   image->iname_offset + (long long)(bytes));
   require(size >= 0, f, where + "corrupt gzip data");
   const long long held = size - image->iname_offset;
   require(held >= (long long)(bytes), f,

@@ -255,6 +255,10 @@ ScalarVolume load_nrrd(const std::string& path) {
   }
   const size_t count = size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz);
   const size_t expected = count * size_t(bytes);
+  require(expected <= kMaxVolumeBytes, f,
+          where + "the header claims " + std::to_string(expected) +
+              " bytes of samples, more than the " + std::to_string(kMaxVolumeBytes) +
+              " read (2^30)");
   const std::string size_text = std::to_string(volume.nx) + " x " + std::to_string(volume.ny) +
                                 " x " + std::to_string(volume.nz) + " " +
                                 detail::voxel_type_name(type) + " voxels (" +

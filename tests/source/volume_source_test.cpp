@@ -250,6 +250,11 @@ TEST_F(VolumeSourceTest, RefusesBadVolumesAndTransfersWithOneLineNamingTheFile) 
          "the header claims 40 x 40 x 20 int16 voxels (64000 bytes), the file holds 5000 bytes");
   write(path("zero.nii"), nifti({}, 0));
   expect("zero.nii", "a volume of zero size");
+  // A vox_offset past 2^31 (libnifti read from byte 348 instead).
+  std::string far = nifti(v);
+  put(far, 108, 3e9f);
+  write(path("far.nii"), far);
+  expect("far.nii", "is negative or beyond 2^31 bytes");
   write(path("tiny.nii"), "not a nifti");
   expect("tiny.nii", "not a NIfTI-1 file");
 

@@ -26,6 +26,8 @@ struct ScalarVolume {
 /// checked from its header before anything is allocated (a 110-byte gzipped NRRD claiming 10^10
 /// voxels took 9.6 GB).
 inline constexpr size_t kMaxVoxels = size_t(1) << 28;
+/// The most bytes of samples a volume file is read with (2^30: 2^27 float64 voxels).
+inline constexpr size_t kMaxVolumeBytes = size_t(1) << 30;
 
 /// Throws InvalidInput naming `function` and `file` for a volume with a side of zero voxels
 /// ("a volume of zero size"), a value count that is not nx ny nz, a non-finite value, or a
