@@ -249,7 +249,7 @@ MapStyle parse_map_style(const std::string& text, const std::string& name) {
   Json j;
   try {
     j = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // a syntax error, or a number past a double (1e999)
     const std::string what = e.what();
     const size_t end = what.find("] ");
     reader.fail("JSON", end == std::string::npos ? what : what.substr(end + 2));

@@ -234,6 +234,9 @@ TEST_F(VectorMapTest, BadStyleIsRefusedNamingTheFileAndTheKey) {
   // Sizes a renderer would spend without bound on (a point radius of 1e300 hung it).
   expect_names(refusal(R"({"layers": [{"radius": 1e300}]})"), "layers[0].radius: 1e+300");
   expect_names(refusal(R"({"layers": [{"width": 5000}]})"), "at most 1000");
+  // A number past a double is the file's fault too, named with it (it exited 1 with the JSON
+  // library's text alone).
+  expect_names(refusal(R"({"layers": [{"width": 1e999}]})"), "number overflow parsing '1e999'");
   // A malformed GeoJSON names its file and the element.
   write_text(path("bad.geojson"), R"({"type": "FeatureCollection", "features": [
     {"type": "Feature", "properties": null, "geometry": {"type": "Point", "coordinates": [1]}}]})");
