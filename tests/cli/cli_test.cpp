@@ -53,6 +53,8 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,0", "radius");
   expect_refused("magnify " + in + out + " --lens circle:50,50,-4", "radius");
   expect_refused("magnify " + in + out + " --lens circle:50,50,nan", "radius");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,1e-308",
+                 "the circle reaches 1e-308 px from its centre, less than half a pixel");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20:0", "zoom");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20:-2", "zoom");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20:inf", "zoom");
