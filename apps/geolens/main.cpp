@@ -88,6 +88,12 @@ int run_magnify(const MagnifyArgs& a) {
               << " triangles are flipped (folded); try --texture cotan, a lower zoom or a finer "
                  "--mesh\n";
   }
+  if (distortion.degenerate()) {
+    std::cerr << "geolens: warning: some triangles collapsed (conformal maximum "
+              << distortion.conformal_max
+              << "): the distortion figures are not meaningful; try --model focus, a lower zoom "
+                 "or a finer --mesh\n";
+  }
   timings.measure = lap();
 
   RenderOptions render_options;

@@ -46,7 +46,8 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
   }
   stats["lenses"] = list;
   stats["distortion"] = {{"conformal_mean", summary.conformal_mean},
-                         {"conformal_max", summary.conformal_max}};
+                         {"conformal_max", summary.conformal_max},
+                         {"degenerate", summary.degenerate()}};
   const double parts =
       timings.load + result.timings.total + timings.measure + timings.render + timings.save;
   stats["timings_ms"] = {{"load", timings.load},

@@ -319,6 +319,7 @@ TEST_F(Cli, StatsHoldEveryField) {
   }
   EXPECT_GE(s.at("distortion").at("conformal_max").get<double>(),
             s.at("distortion").at("conformal_mean").get<double>());
+  EXPECT_FALSE(s.at("distortion").at("degenerate").get<bool>());
   const auto& t = s.at("timings_ms");
   for (const char* stage : {"load", "lift", "texture", "factorize", "iterate", "solve", "measure",
                             "render", "save", "other", "total"})

@@ -14,6 +14,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/classic_lens.h"
+#include "geolens/measure/distortion.h"
 
 namespace geolens {
 namespace {
@@ -31,6 +32,24 @@ WarpMesh affine_warp(const Grid& grid, const Eigen::Matrix2d& A, const Eigen::Ve
   for (Eigen::Index i = 0; i < grid.V.rows(); ++i)
     warp.screen.row(i) = (A * (grid.V.row(i).transpose() - c) + c + t).transpose();
   return warp;
+}
+
+// A warp with a triangle squashed to a sliver is flagged degenerate (its figures say how badly it
+// collapsed, not what a picture shows); a mild one is not.
+TEST(DistortionSummary, ACollapsedTriangleMakesTheFiguresDegenerate) {
+  WarpMesh warp;
+  warp.source.resize(3, 2);
+  warp.source << 0, 0, 10, 0, 0, 10;
+  warp.F.resize(1, 3);
+  warp.F << 0, 1, 2;
+  warp.screen = warp.source;
+  warp.screen(2, 1) = 1e-12;  // squashed onto the x axis, still counter-clockwise
+  warp.screen_width = warp.screen_height = 10;
+  EXPECT_TRUE(summarize(measure_triangles(warp)).degenerate());
+  warp.screen(2, 1) = 5;  // half as tall: conformal 1
+  const DistortionSummary mild = summarize(measure_triangles(warp));
+  EXPECT_NEAR(mild.conformal_max, 1, 1e-9);
+  EXPECT_FALSE(mild.degenerate());
 }
 
 TEST(DistortionRegions, ZonesHaveTheAreasOfTheirDisks) {

@@ -41,6 +41,10 @@ struct DistortionSummary {
   double conformal_mean = 0;  ///< source-area-weighted mean of s1 / s2 - 1
   double conformal_max = 0;
   int flipped = 0;
+  /// Some triangle collapsed (conformal_max above kDegenerateConformal): the figures then say
+  /// how badly, not what a picture shows (the field model on a paragraph measured 8.3e14).
+  bool degenerate() const { return !(conformal_max <= kDegenerateConformal); }
+  static constexpr double kDegenerateConformal = 1e6;
 };
 
 DistortionSummary summarize(const TriangleDistortion& measures);
