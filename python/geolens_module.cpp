@@ -78,11 +78,16 @@ PYBIND11_MODULE(geolens, m) {
         const std::pair<int, int> output =
             output_size(size, {source.width, source.height}, "magnify");
         Image magnified;
+        std::vector<std::string> warnings;
         {
           py::gil_scoped_release release;
           const LensResult result = GeometricLens(source.width, source.height, options).solve(list);
+          warnings = zoom_warnings(list, result);
           magnified = render_image(result.warp, source, output, options.flatten.threads);
         }
+        // As the CLI says them on stderr: a lens that did not get the zoom asked.
+        for (const std::string& w : warnings)
+          if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) < 0) throw py::error_already_set();
         return to_array(std::move(magnified), image.ndim() == 2);
       },
       py::arg("image"), py::arg("lenses"), py::arg("size") = py::none(),

@@ -128,16 +128,8 @@ std::pair<int, int> parse_size(const std::string& text) {
 }
 
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    if (k < result.zoom_fit_reasons.size() && !result.zoom_fit_reasons[k].empty()) {
-      std::cerr << "geolens: warning: lens " << k + 1 << " gets zoom " << result.zoom_fits[k]
-                << " of the " << lenses[k].zoom << " asked where it is, limited by "
-                << result.zoom_fit_reasons[k] << "\n";
-    } else if (std::abs(result.zoom_measured[k] / lenses[k].zoom - 1) > 0.1) {
-      std::cerr << "geolens: warning: lens " << k + 1 << " reached zoom " << result.zoom_measured[k]
-                << " of the " << lenses[k].zoom << " requested\n";
-    }
-  }
+  for (const std::string& line : zoom_warnings(lenses, result))
+    std::cerr << "geolens: warning: " << line << "\n";
 }
 
 }  // namespace geolens::cli

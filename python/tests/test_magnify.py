@@ -127,3 +127,11 @@ def test_image_files_refuse_bad_paths(tmp_path, demo):
     with pytest.raises(ValueError, match="missing.png"):
         geolens.load_image(str(tmp_path / "missing.png"))
     assert list(tmp_path.iterdir()) == []
+
+
+def test_magnify_warns_as_the_cli_does_when_a_lens_does_not_get_its_zoom(demo, run_cli):
+    cli = run_cli("--lens", "circle:512,512,300:4")
+    assert cli.returncode == 0, cli.stderr
+    with pytest.warns(UserWarning, match=r"lens 1 gets zoom .* of the 4 asked where it is") as w:
+        geolens.magnify(demo, geolens.circle(512, 512, 300, zoom=4))
+    assert "geolens: warning: " + str(w[0].message) in cli.stderr

@@ -67,6 +67,23 @@ std::string to_string(LensModel model) {
   return "?";
 }
 
+std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const LensResult& result) {
+  auto text = [](double value) { return (std::ostringstream() << value).str(); };
+  std::vector<std::string> lines;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    const std::string lens = "lens " + std::to_string(k + 1);
+    if (k < result.zoom_fit_reasons.size() && !result.zoom_fit_reasons[k].empty())
+      lines.push_back(lens + " gets zoom " + text(result.zoom_fits[k]) + " of the " +
+                      text(lenses[k].zoom) + " asked where it is, limited by " +
+                      result.zoom_fit_reasons[k]);
+    else if (k < result.zoom_measured.size() &&
+             std::abs(result.zoom_measured[k] / lenses[k].zoom - 1) > 0.1)
+      lines.push_back(lens + " reached zoom " + text(result.zoom_measured[k]) + " of the " +
+                      text(lenses[k].zoom) + " requested");
+  }
+  return lines;
+}
+
 void validate(const LensOptions& o) {
   require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
           "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));

@@ -112,6 +112,12 @@ struct LensResult : Magnification {
   StageTimings timings;
 };
 
+/// One line per lens of `lenses` that `result` did not give the zoom asked: "lens K gets zoom Z
+/// of the A asked where it is, limited by REASON" (the focus model's zoom_fit_reasons), or
+/// "lens K reached zoom Z of the A requested" where the measured zoom misses by more than 10 %.
+/// What every face says (the CLI on stderr, Python as warnings).
+std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const LensResult& result);
+
 struct SolveCache;  // what one solve leaves for the next: lens/solve_cache.h (private)
 struct MeshMemo;    // the last mesh, in a SolveCache
 
