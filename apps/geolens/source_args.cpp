@@ -19,7 +19,7 @@ void add_source_inputs(RunFiles& files, const std::string& input, const SourceAr
   // A tile folder's tiles, a pyramid's level images and a volume's detached data are inputs too.
   if (std::filesystem::is_directory(input)) files.add_input_folder("the input tile folder", input);
   for (const std::string& part : source_parts(input))
-    files.add_input("the file '" + input + "' reads", part);
+    files.add_input("part of the input '" + input + "'", part);
   if (!a.style.empty()) files.add_input("the --style file", a.style);
   // A --transfer that names a file is read too; a preset name is no file and clashes with none.
   if (!a.transfer.empty()) files.add_input("the --transfer file", a.transfer);

@@ -132,8 +132,8 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   write("head.raw", std::string(64, '\x40'));
   expect_refused("magnify " + path("head.nrrd") + " --lens circle:50,50,20 -o " + path("head.png") +
                      " --stats " + path("head.raw"),
-                 "--stats: '" + path("head.raw") + "' would overwrite the file '" +
-                     path("head.nrrd") + "' reads");
+                 "--stats: '" + path("head.raw") + "' would overwrite part of the input '" +
+                     path("head.nrrd") + "' '" + path("head.raw") + "'");
 }
 
 }  // namespace

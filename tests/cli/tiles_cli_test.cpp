@@ -98,8 +98,8 @@ TEST_F(TilesCli, MagnifiesALevelList) {
   // overwritten).
   expect_refused(
       "magnify " + path("map.levels") + " --lens circle:16,16,3:2 -o " + path("coarse.png"),
-      "--output: '" + path("coarse.png") + "' would overwrite the file '" + path("map.levels") +
-          "' reads");
+      "--output: '" + path("coarse.png") + "' would overwrite part of the input '" +
+          path("map.levels") + "' '" + path("coarse.png") + "'");
 }
 
 TEST_F(TilesCli, BadTileFoldersAndLevelListsAreRefusedInOneLine) {
