@@ -40,9 +40,9 @@ OutputTarget output_target(const std::string& path) {
   return out;
 }
 
-std::string write_in_place(const std::string& target, const void* data, size_t size) {
+std::string write_bytes(const std::string& path, const void* data, size_t size) {
   std::string reason;
-  if (std::FILE* file = std::fopen(target.c_str(), "wb")) {
+  if (std::FILE* file = std::fopen(path.c_str(), "wb")) {
     if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);
     if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
   } else {
@@ -56,18 +56,12 @@ void write_file(const std::string& path, const void* data, size_t size) {
   if (out.dangling)
     throw IoError("write_file: cannot write '" + path + "': a symbolic link to a missing file");
   if (out.in_place) {
-    const std::string reason = write_in_place(out.target, data, size);
+    const std::string reason = write_bytes(out.target, data, size);
     if (!reason.empty()) throw IoError("write_file: cannot write '" + path + "': " + reason);
     return;
   }
   const std::string temporary = temporary_path(out.target);
-  std::string reason;
-  if (std::FILE* file = std::fopen(temporary.c_str(), "wb")) {
-    if (std::fwrite(data, 1, size, file) != size) reason = std::strerror(errno);
-    if (std::fclose(file) != 0 && reason.empty()) reason = std::strerror(errno);
-  } else {
-    reason = std::strerror(errno);
-  }
+  std::string reason = write_bytes(temporary, data, size);
   std::error_code error;
   if (reason.empty()) {
     fs::rename(temporary, out.target, error);

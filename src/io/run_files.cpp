@@ -134,7 +134,7 @@ void RunFiles::commit() {
     // A device or a FIFO: its bytes written into it, the staged file removed either way.
     const std::string bytes = read_file(o.temporary, "RunFiles::commit", "staged");
     std::filesystem::remove(o.temporary, error);
-    const std::string reason = write_in_place(o.target, bytes.data(), bytes.size());
+    const std::string reason = write_bytes(o.target, bytes.data(), bytes.size());
     if (!reason.empty()) throw IoError("cannot write '" + o.path + "': " + reason);
   }
   committed_ = true;

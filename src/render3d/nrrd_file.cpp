@@ -103,38 +103,34 @@ std::string resolved_data_path(const std::string& header, const std::string& nam
                              : (std::filesystem::path(header).parent_path() / named).string();
 }
 
-}  // namespace
+// The header of the NRRD text `text`, `where` naming its file for messages: every "field: value"
+// line by name (its value and line number; key:=value pairs left out), where the data would start
+// and whether a blank line ends the header (the data attached after it). Throws InvalidInput
+// naming "load_nrrd" for a text without the magic or with a line that is not "field: value".
+struct Header {
+  std::map<std::string, std::pair<std::string, int>> fields;
+  size_t data_start = 0;
+  bool attached = false;
 
-std::string nrrd_data_path(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return "";
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line) || line.compare(0, 7, "NRRD000") != 0) return "";
-  for (size_t read = 0; read < (size_t(1) << 20) && std::getline(in, line);) {
-    read += line.size() + 1;
-    if (trim(line).empty()) break;
-    const size_t colon = line.find(':');
-    if (colon == std::string::npos || line[0] == '#') continue;
-    const std::string name = trim(line.substr(0, colon));
-    if ((name == "data file" || name == "datafile") && colon + 1 < line.size() &&
-        line[colon + 1] != '=')
-      return resolved_data_path(path, trim(line.substr(colon + 1)));
+  // The value of field `name`, empty if there is none.
+  std::string value(const std::string& name) const {
+    const auto it = fields.find(name);
+    return it == fields.end() ? std::string() : it->second.first;
   }
-  return "";
-}
+  // The detached data file as the header names it ("data file" or "datafile"), empty if none.
+  std::string data_file() const {
+    const std::string name = value("data file");
+    return name.empty() ? value("datafile") : name;
+  }
+};
 
-ScalarVolume load_nrrd(const std::string& path) {
+Header parse_header(const std::string& text, const std::string& where) {
   const char* f = "load_nrrd";
-  const std::string where = "'" + path + "': ";
-  const std::string text = read_file(path, f, "NRRD");
   require(text.compare(0, 7, "NRRD000") == 0 && text.size() > 8 && text[7] >= '1' && text[7] <= '5',
           f, where + "not a NRRD file (it does not start with NRRD0001 - NRRD0005)");
-
-  std::map<std::string, std::pair<std::string, int>> fields;  // name -> value, line
-  size_t at = 0;
+  Header header;
+  size_t& at = header.data_start;
   int line_number = 0;
-  bool attached = false;
   while (at < text.size()) {
     size_t end = text.find('\n', at);
     if (end == std::string::npos) end = text.size();
@@ -143,7 +139,7 @@ ScalarVolume load_nrrd(const std::string& path) {
     ++line_number;
     if (line_number == 1 || (!line.empty() && line[0] == '#')) continue;
     if (trim(line).empty()) {
-      attached = true;
+      header.attached = true;
       break;
     }
     const size_t colon = line.find(':');
@@ -151,12 +147,39 @@ ScalarVolume load_nrrd(const std::string& path) {
             where + "header line " + std::to_string(line_number) + " '" + line.substr(0, 60) +
                 "' is not 'field: value'");
     if (colon + 1 < line.size() && line[colon + 1] == '=') continue;  // key:=value
-    fields[trim(line.substr(0, colon))] = {trim(line.substr(colon + 1)), line_number};
+    header.fields[trim(line.substr(0, colon))] = {trim(line.substr(colon + 1)), line_number};
   }
-  auto field = [&](const std::string& name, bool required) -> std::string {
-    const auto it = fields.find(name);
-    require(it != fields.end() || !required, f, where + "the header has no '" + name + "' field");
-    return it == fields.end() ? std::string() : it->second.first;
+  return header;
+}
+
+}  // namespace
+
+std::string nrrd_data_path(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return "";
+  // A header is text lines before the data: its first MiB holds it.
+  std::string text(size_t(1) << 20, '\0');
+  std::ifstream in(path, std::ios::binary);
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(size_t(in.gcount()));
+  try {
+    const std::string name = parse_header(text, "'" + path + "': ").data_file();
+    return name.empty() ? name : resolved_data_path(path, name);
+  } catch (const InvalidInput&) {
+    return "";  // load_nrrd names what is wrong
+  }
+}
+
+ScalarVolume load_nrrd(const std::string& path) {
+  const char* f = "load_nrrd";
+  const std::string where = "'" + path + "': ";
+  const std::string text = read_file(path, f, "NRRD");
+  Header header = parse_header(text, where);
+  auto& fields = header.fields;  // name -> value, line
+  auto field = [&](const std::string& name, bool required) {
+    require(!required || fields.count(name) > 0, f,
+            where + "the header has no '" + name + "' field");
+    return header.value(name);
   };
   auto bad = [&](const std::string& name, const std::string& what) {
     return where + "header line " + std::to_string(fields[name].second) + " (" + name + ": " +
@@ -230,11 +253,10 @@ ScalarVolume load_nrrd(const std::string& path) {
   }
 
   // The data: attached after the blank line, or in a detached file.
-  std::string detached_name = field("data file", false);
-  if (detached_name.empty()) detached_name = field("datafile", false);
+  const std::string detached_name = header.data_file();
   std::string detached;
   const std::string* data = &text;
-  size_t data_start = at;
+  size_t data_start = header.data_start;
   std::string data_where = where;
   if (!detached_name.empty()) {
     const std::string data_path = resolved_data_path(path, detached_name);
@@ -243,7 +265,7 @@ ScalarVolume load_nrrd(const std::string& path) {
     data_start = 0;
     data_where = where + "data file '" + data_path + "': ";
   } else {
-    require(attached, f, where + "no data: the header has no blank line and no 'data file'");
+    require(header.attached, f, where + "no data: the header has no blank line and no 'data file'");
   }
   const std::string line_skip = field("line skip", false);
   if (!line_skip.empty()) {

@@ -257,8 +257,6 @@ class LevelListSource : public Source {
   mutable std::atomic<size_t> decoded_{0}, made_{0};
 };
 
-/// The level (>= 0) an image of width x height is for, of a finest W x H; -1 if its width fits
-/// no level, -2 if its width does but its height does not.
 // The images named by the level list `text` read from `path`: name, line and path (resolved
 // against the list's folder), sizes not read.
 std::vector<ListedImage> listed_images(const std::string& text, const std::string& path) {
@@ -280,6 +278,8 @@ std::vector<ListedImage> listed_images(const std::string& text, const std::strin
   return images;
 }
 
+/// The level (>= 0) an image of width x height is for, of a finest W x H; -1 if its width fits
+/// no level, -2 if its width does but its height does not.
 int level_of(int width, int height, int W, int H) {
   bool width_fits = false;
   // Levels down to the first 1 x 1 one, as Source counts them.

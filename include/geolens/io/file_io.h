@@ -22,14 +22,14 @@ struct OutputTarget {
 };
 OutputTarget output_target(const std::string& path);
 
-/// Writes `size` bytes at `data` into the existing file `target` (a device, a FIFO), opened for
-/// writing; returns the reason it failed, empty if it did not.
-std::string write_in_place(const std::string& target, const void* data, size_t size);
+/// Writes `size` bytes at `data` to `path` opened for writing (made, or emptied: a temporary, a
+/// device, a FIFO), as it is; returns the reason it failed, empty if it did not.
+std::string write_bytes(const std::string& path, const void* data, size_t size);
 
 /// Writes `size` bytes at `data` to `path` (output_target: through a link, into a device or a
-/// FIFO), else to a temporary file in its folder (temporary_path) renamed into place, so `path`
-/// is never left partial. Throws IoError naming `path` and the reason if `path` is a link to
-/// nothing or writing or renaming fails (the temporary is removed).
+/// FIFO with write_bytes), else to a temporary file in its folder (temporary_path) renamed into
+/// place, so `path` is never left partial. Throws IoError naming `path` and the reason if `path` is
+/// a link to nothing or writing or renaming fails (the temporary is removed).
 void write_file(const std::string& path, const void* data, size_t size);
 /// The same for text.
 void write_file(const std::string& path, const std::string& content);
