@@ -68,6 +68,7 @@ std::string to_string(LensModel model) {
 }
 
 std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const LensResult& result) {
+  // Six significant digits, as the CLI has always printed these zooms (3.20563).
   auto text = [](double value) { return (std::ostringstream() << value).str(); };
   std::vector<std::string> lines;
   for (size_t k = 0; k < lenses.size(); ++k) {
@@ -93,7 +94,7 @@ void validate(const LensOptions& o) {
   require(std::isfinite(o.mesh_tolerance) && (o.mesh_tolerance == 0 || o.mesh_tolerance >= 0.01),
           "validate",
           "mesh tolerance must be 0 (no refinement) or at least 0.01 pixels, got " +
-              (std::ostringstream() << o.mesh_tolerance).str());
+              number_text(o.mesh_tolerance));
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");

@@ -1,7 +1,6 @@
 #include "geolens/lens/lift.h"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 #include "geolens/core/errors.h"
@@ -31,8 +30,7 @@ void validate_lens(const Lens& lens, double width, double height) {
   // A region under half a pixel has nothing to magnify, and no mesh (a radius of 1e-308 was
   // refused by make_grid for a box of 0 x 0).
   require(lens.region.reach() >= 0.5, "validate_lens",
-          "the " + lens.region.kind() + " reaches " +
-              (std::ostringstream() << lens.region.reach()).str() +
+          "the " + lens.region.kind() + " reaches " + number_text(lens.region.reach()) +
               " px from its centre, less than half a pixel");
   require_zoom(lens.zoom, "validate_lens");
   require(lens.footprint == 0 || (std::isfinite(lens.footprint) && lens.footprint > lens.zoom &&

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
-#include <sstream>
 #include <vector>
 
 #include "geolens/core/errors.h"
@@ -86,7 +85,7 @@ std::string header_problem(const std::string& path) {
   float vox_offset;
   std::memcpy(&vox_offset, &offset_bits, 4);
   if (!(vox_offset >= 0 && vox_offset < 2147483648.0f))
-    return "the data offset (vox_offset) " + (std::ostringstream() << vox_offset).str() +
+    return "the data offset (vox_offset) " + number_text(vox_offset) +
            " is negative or beyond 2^31 bytes";
   return "";
 }

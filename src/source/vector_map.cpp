@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -71,12 +70,6 @@ struct MapData {
 };
 
 /// `value` as a message shows it: 120, 41.5, 1e+300.
-// The shortest text that reads back to `value` (180.00000000000014, not a rounded 180).
-std::string number_text(double value) {
-  char text[32];
-  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
-}
-
 // How far past the valid range a coordinate may be and still be read, clamped, degrees: the
 // rounding of the tools that wrote it (Natural Earth's land has 180.00000000000014 and
 // -90.00000000000003).

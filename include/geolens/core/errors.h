@@ -33,4 +33,8 @@ struct Cancelled : std::runtime_error {
 /// Throws InvalidInput("<function>: <what>") unless `condition` holds.
 void require(bool condition, const char* function, const std::string& what);
 
+/// `value` for a message: the shortest text that reads back to it (180.00000000000014, 1e-09,
+/// not std::to_string's rounded 180.000000 and 0.000000).
+std::string number_text(double value);
+
 }  // namespace geolens
