@@ -4,8 +4,9 @@
 # (command line), nlohmann-json (stats), libspng and libjpeg-turbo (PNG and JPEG), stb (a
 # stroke font for plot labels), GoogleTest, Google Benchmark. The viewer, geolens-view: GLFW
 # (window, input), libepoxy (loads OpenGL 3.3 core), Dear ImGui (the panel; its static library
-# is built with imgui_freetype, so freetype too); its tests run it under xvfb-run (xvfb, and xauth,
-# which xvfb-run needs and xvfb only recommends) with Mesa's software OpenGL (libgl1-mesa-dri).
+# is built with imgui_freetype, so freetype too); its tests run it on an Xvfb server of their own
+# (xvfb; xauth for the README's xvfb-run commands, which xvfb only recommends) with Mesa's software
+# OpenGL (libgl1-mesa-dri).
 # The Python module: pybind11 and Python's headers build it, numpy and pytest test it (with
 # Debian's /usr/bin/python3, which has them, whatever python3 comes first on PATH).
 # 3D sources: tinyobjloader (OBJ meshes), libnifti2-dev (NIfTI volumes; brings niftiio and

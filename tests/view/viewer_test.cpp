@@ -1,6 +1,6 @@
-// Runs the real geolens-view under Xvfb (Mesa's software OpenGL): its screenshots against each
-// other and against the CPU renderer, scripted drags, mouse input and method switches, and its
-// one-line refusals of bad input.
+// Runs the real geolens-view under Xvfb (Mesa's software OpenGL, one server per test program): its
+// screenshots against each other and against the CPU renderer, scripted drags, mouse input and
+// method switches, and its one-line refusals of bad input.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
 #include "support/scratch_folder.h"
+#include "support/x_display.h"
 
 namespace geolens {
 namespace {
@@ -45,6 +47,7 @@ class View : public testing::ScratchFolderTest {
  protected:
   void SetUp() override {
     ScratchFolderTest::SetUp();
+    ASSERT_TRUE(display_) << "no X display (SetUpTestSuite failed)";
     // Smooth colour ramps under a fine checker and a few bars: enough detail that a moved or
     // magnified lens changes many pixels, smooth enough that sampling differences stay small.
     Image image(kWidth, kHeight, 3);
@@ -61,31 +64,28 @@ class View : public testing::ScratchFolderTest {
     source_ = image;
   }
 
-  // Runs `prefix` geolens-view `arguments`, stdout and stderr kept; prefix xvfb-run by
-  // default (a display of its own per run, so tests may run in parallel).
-  ViewRun run(const std::string& arguments,
-              const std::string& prefix = "xvfb-run -a -s \"-screen 0 1280x1024x24\" ") const {
+  static void SetUpTestSuite() { display_ = std::make_unique<testing::XDisplay>(); }
+  static void TearDownTestSuite() { display_.reset(); }
+
+  // The environment that shows the viewer on the suite's Xvfb server.
+  static std::string on_display() { return "DISPLAY=" + display_->name() + " "; }
+
+  // Runs geolens-view `arguments` in `environment` (a prefix of the command), stdout and stderr
+  // kept.
+  ViewRun run(const std::string& arguments, const std::string& environment = on_display()) const {
     // Under AddressSanitizer (scripts/sanitize.sh) the viewer runs without leak checking: Mesa's
     // driver is unloaded at exit, so what its globals held looks leaked from an '<unknown
     // module>' that no suppression can name. Every other check stays on.
     const char* asan = std::getenv("ASAN_OPTIONS");
     const std::string env =
         asan ? "ASAN_OPTIONS='" + std::string(asan) + ":detect_leaks=0' " : std::string();
-    const std::string command = env + prefix + GEOLENS_VIEW + " " + arguments + " > " +
+    const std::string command = env + environment + GEOLENS_VIEW + " " + arguments + " > " +
                                 path("stdout.txt") + " 2> " + path("stderr.txt");
-    // xvfb-run itself sometimes fails to remove its temporary folder after the program has exited
-    // (seen under the sanitizer build with two tests at once): it then says so and exits 5,
-    // whatever the program's code. That run is repeated; the viewer's own codes are 0 - 3.
-    constexpr const char* kCleanupError =
-        "xvfb-run: error: problem while cleaning up temporary directory";
     ViewRun r;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-      const int status = std::system(command.c_str());
-      r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      r.out = read_text(path("stdout.txt"));
-      r.err = read_text(path("stderr.txt"));
-      if (!(r.code == 5 && r.err.find(kCleanupError) != std::string::npos)) break;
-    }
+    const int status = std::system(command.c_str());
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_text(path("stdout.txt"));
+    r.err = read_text(path("stderr.txt"));
     return r;
   }
 
@@ -111,7 +111,10 @@ class View : public testing::ScratchFolderTest {
   }
 
   Image source_;
+  static std::unique_ptr<testing::XDisplay> display_;
 };
+
+std::unique_ptr<testing::XDisplay> View::display_;
 
 // Mean absolute difference over every channel of the pixels in [x0, x1) x [y0, y1).
 double mean_difference(const Image& a, const Image& b, int x0 = 0, int y0 = 0, int x1 = kWidth,
@@ -144,10 +147,10 @@ PictureStats picture_stats(const std::string& out) {
   return p;
 }
 
-TEST(ViewSetup, XvfbRunIsInstalled) {
+TEST(ViewSetup, XvfbIsInstalled) {
   // scripts/setup.sh installs it; without it every test here would fail for that reason alone.
-  ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0)
-      << "xvfb-run is missing: install the xvfb and xauth packages (bash scripts/setup.sh)";
+  ASSERT_EQ(std::system("command -v Xvfb > /dev/null"), 0)
+      << "Xvfb is missing: install the xvfb package (bash scripts/setup.sh)";
 }
 
 TEST_F(View, TheScreenshotShowsTheImage) {
@@ -770,7 +773,7 @@ TEST_F(View, BadInputEndsWithOneLineAndAnExitCode) {
                      "env -u DISPLAY -u WAYLAND_DISPLAY "),
                  3, "DISPLAY");
   expect_refused(run(path("in.png") + size + "--screenshot " + path("o.png"),
-                     "MESA_GL_VERSION_OVERRIDE=3.0 xvfb-run -a "),
+                     "MESA_GL_VERSION_OVERRIDE=3.0 " + on_display()),
                  3, "OpenGL 3.3");
   EXPECT_FALSE(fs::exists(path("o.png")));
 }
