@@ -18,6 +18,7 @@
 #include "geolens/eval/comparison_report.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/lens_method.h"
+#include "geolens/lens/unread_options.h"
 #include "geolens/render/render.h"
 #include "lenses.h"
 #include "options.h"
@@ -79,13 +80,16 @@ PYBIND11_MODULE(geolens, m) {
             output_size(size, {source.width, source.height}, "magnify");
         Image magnified;
         std::vector<std::string> warnings;
+        for (const UnreadOption& o : unread_options(options, list))
+          warnings.push_back(o.name + " is ignored: " + o.reason);
         {
           py::gil_scoped_release release;
           const LensResult result = GeometricLens(source.width, source.height, options).solve(list);
-          warnings = zoom_warnings(list, result);
+          for (std::string& w : zoom_warnings(list, result)) warnings.push_back(std::move(w));
           magnified = render_image(result.warp, source, output, options.flatten.threads);
         }
-        // As the CLI says them on stderr: a lens that did not get the zoom asked.
+        // As the CLI says them on stderr: an option the model does not read, a lens that did not
+        // get the zoom asked.
         for (const std::string& w : warnings)
           if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) < 0) throw py::error_already_set();
         return to_array(std::move(magnified), image.ndim() == 2);

@@ -80,6 +80,7 @@ int run_compare(const CompareArgs& a) {
   const SourceFile source = cli::open_input(a.input, a.source);
   const int width = source.frame_width, height = source.frame_height;
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, width, height);
+  cli::warn_about_unread_options(options, lenses);
   const std::string title = fs::path(a.input).filename().string();
 
   if (a.sweep) {

@@ -1,5 +1,6 @@
 #include "lens_args.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -7,6 +8,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/core/thread_pool.h"
 #include "geolens/lens/lens_spec.h"
+#include "geolens/lens/unread_options.h"
 
 namespace geolens::cli {
 
@@ -125,6 +127,15 @@ std::pair<int, int> parse_size(const std::string& text) {
   const size_t x = text.find('x');
   require(x != std::string::npos, "--size", "expected WxH, got '" + text + "'");
   return {side(text.substr(0, x)), side(text.substr(x + 1))};
+}
+
+void warn_about_unread_options(const LensOptions& options, const std::vector<Lens>& lenses) {
+  for (const UnreadOption& o : unread_options(options, lenses)) {
+    std::string flag = "--" + o.name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    std::cerr << "geolens: warning: " << flag << " is ignored: " << o.reason
+              << "; it is left out of the stats\n";
+  }
 }
 
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {

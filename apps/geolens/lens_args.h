@@ -44,6 +44,10 @@ std::vector<LensSpecFile> lens_files(const LensArgs& args);
 /// --size otherwise.
 std::pair<int, int> parse_size(const std::string& text);
 
+/// Prints a warning on stderr for each option set that the model solving `lenses` does not read
+/// (unread_options, lens/unread_options.h).
+void warn_about_unread_options(const LensOptions& options, const std::vector<Lens>& lenses);
+
 /// Prints a warning on stderr for each lens that does not fit where it is (the largest zoom
 /// that fits, for the focus model) or misses its requested zoom by more than 10 %.
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result);

@@ -75,6 +75,7 @@ int run_magnify(const MagnifyArgs& a) {
   const SourceFile source = cli::open_input(a.input, a.source);
   const int frame_width = source.frame_width, frame_height = source.frame_height;
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, frame_width, frame_height);
+  cli::warn_about_unread_options(options, lenses);
   const auto [width, height] = cli::output_size(source, a.source);
   timings.load = lap();
 

@@ -141,6 +141,7 @@ int run_map(const MapArgs& a) {
     source_size = output_size;
   }
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, source_size.first, source_size.second);
+  cli::warn_about_unread_options(options, lenses);
 
   const LensResult result =
       GeometricLens(source_size.first, source_size.second, options).solve(lenses);

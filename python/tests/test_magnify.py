@@ -1,5 +1,7 @@
 """magnify(), render(), the classic lenses, compare() and the image files."""
 
+import warnings
+
 import geolens
 import numpy as np
 import pytest
@@ -135,3 +137,18 @@ def test_magnify_warns_as_the_cli_does_when_a_lens_does_not_get_its_zoom(demo, r
     with pytest.warns(UserWarning, match=r"lens 1 gets zoom .* of the 4 asked where it is") as w:
         geolens.magnify(demo, geolens.circle(512, 512, 300, zoom=4))
     assert "geolens: warning: " + str(w[0].message) in cli.stderr
+
+
+def test_magnify_warns_about_an_option_the_model_does_not_read(demo, run_cli):
+    # texture= shapes only the lift model's texture map: the default focus model ignores it.
+    cli = run_cli("--lens", "circle:512,512,100:2", "--texture", "mvc")
+    assert cli.returncode == 0, cli.stderr
+    lens = geolens.circle(512, 512, 100, zoom=2)
+    with pytest.warns(UserWarning, match=r"^texture is ignored: only the lift model") as w:
+        ignored = geolens.magnify(demo, lens, texture="mvc")
+    assert "geolens: warning: --" + str(w[0].message) in cli.stderr
+    assert np.array_equal(ignored, geolens.magnify(demo, lens))
+    # Read by the lift model: no warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        geolens.magnify(demo, lens, model="lift", texture="mvc")

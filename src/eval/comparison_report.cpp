@@ -35,7 +35,7 @@ std::string comparison_json(const Comparison& c) {
     const RegionStatistics& r = m.regions;
     nlohmann::json lenses = nlohmann::json::array();
     for (size_t k = 0; k < c.lenses.size(); ++k)
-      lenses.push_back(lens_json(c.lenses[k], m.zoom_measured[k], m.foci[k]));
+      lenses.push_back(lens_json(c.lenses[k], m.zoom_measured[k], m.foci[k], c.geometric.model));
     report["methods"].push_back(
         {{"name", m.name},
          {"zoom_center", m.zoom_measured.front()},

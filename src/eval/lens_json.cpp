@@ -1,10 +1,12 @@
 #include "eval/lens_json.h"
 
 #include "geolens/lens/focus_lens.h"
+#include "geolens/lens/unread_options.h"
 
 namespace geolens {
 
-nlohmann::json lens_json(const Lens& lens, double zoom_measured, const FocusMeasure& focus) {
+nlohmann::json lens_json(const Lens& lens, double zoom_measured, const FocusMeasure& focus,
+                         LensModel model) {
   const Region& region = lens.region;
   const Eigen::AlignedBox2d box = region.bounds();
   nlohmann::json json = {{"kind", region.kind()},
@@ -22,6 +24,10 @@ nlohmann::json lens_json(const Lens& lens, double zoom_measured, const FocusMeas
                            {"shape_max", focus.shape_max}}},
                          {"footprint_radius", focus.footprint_radius},
                          {"displacement_beyond_footprint", focus.displacement_beyond_footprint}};
+  LensOptions solved;
+  solved.model = model;
+  for (const char* name : {"profile", "footprint"})
+    if (!reads_option(solved, {lens}, name)) json.erase(name);
   if (const std::optional<Circle> circle = region.circle()) {
     json["center"] = {circle->center.x(), circle->center.y()};
     json["radius"] = circle->radius;

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geolens/eval/focus_measure.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/geometric_lens.h"
 
 namespace geolens {
 
@@ -13,7 +13,9 @@ namespace geolens {
 /// [x, y] and `radius` for a circle; pixels), `profile`, `zoom_requested`, `zoom_measured` (at
 /// the peak, on the warp measured), `footprint` (the ratio, footprint_ratio), and what `focus`
 /// measured on that warp: `focus` {`zoom`, `uniformity`, `shape_mean`, `shape_max`},
-/// `footprint_radius` and `displacement_beyond_footprint` (pixels).
-nlohmann::json lens_json(const Lens& lens, double zoom_measured, const FocusMeasure& focus);
+/// `footprint_radius` and `displacement_beyond_footprint` (pixels). `profile` and `footprint`
+/// only where `model` (the one that solved the lens) reads them (reads_option).
+nlohmann::json lens_json(const Lens& lens, double zoom_measured, const FocusMeasure& focus,
+                         LensModel model);
 
 }  // namespace geolens

@@ -5,6 +5,7 @@
 
 #include "eval/lens_json.h"
 #include "geolens/eval/focus_measure.h"
+#include "geolens/lens/unread_options.h"
 
 namespace geolens {
 
@@ -22,23 +23,28 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
   stats["texture_fallback"] = result.texture_fallback;
   stats["flipped"] = summary.flipped;
   stats["model"] = to_string(result.model);
-  stats["options"] = {{"mesh", options.mesh},
-                      {"model", to_string(options.model)},
-                      {"subdivide", options.subdivision.max_levels},
-                      {"extent", to_string(options.extent)},
-                      {"extent_factor", options.extent_factor},
-                      {"texture", to_string(options.texture)},
-                      {"weights", to_string(options.flatten.weights)},
-                      {"metric", to_string(options.flatten.metric)},
-                      {"alpha", options.flatten.alpha},
-                      {"boundary", to_string(options.flatten.boundary)},
-                      {"tolerance", options.flatten.tolerance},
-                      {"max_iterations", options.flatten.max_iterations}};
+  // Only what the model read: an option it does not (unread_options.h) is left out.
+  nlohmann::json& echoed = stats["options"];
+  echoed = {{"mesh", options.mesh},
+            {"model", to_string(options.model)},
+            {"mesh_tolerance", options.mesh_tolerance},
+            {"subdivide", options.subdivision.max_levels},
+            {"extent", to_string(options.extent)},
+            {"extent_factor", options.extent_factor},
+            {"texture", to_string(options.texture)},
+            {"weights", to_string(options.flatten.weights)},
+            {"metric", to_string(options.flatten.metric)},
+            {"alpha", options.flatten.alpha},
+            {"boundary", to_string(options.flatten.boundary)},
+            {"tolerance", options.flatten.tolerance},
+            {"max_iterations", options.flatten.max_iterations}};
+  for (auto it = echoed.begin(); it != echoed.end();)
+    it = reads_option(options, lenses, it.key()) ? std::next(it) : echoed.erase(it);
   const std::vector<FocusMeasure> foci =
       measure_foci(result.warp, measure_triangles(result.warp), lenses);
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < lenses.size(); ++k) {
-    nlohmann::json lens = lens_json(lenses[k], result.zoom_measured[k], foci[k]);
+    nlohmann::json lens = lens_json(lenses[k], result.zoom_measured[k], foci[k], result.model);
     lens["height"] = result.heights[k];
     if (k < result.zoom_fits.size()) lens["zoom_fit"] = result.zoom_fits[k];
     if (k < result.zoom_fit_reasons.size()) lens["zoom_fit_reason"] = result.zoom_fit_reasons[k];

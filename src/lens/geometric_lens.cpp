@@ -169,11 +169,15 @@ Grid GeometricLens::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
   return patch;
 }
 
-LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
-  if (options_.model != LensModel::kAuto) return options_.model;
+LensModel resolved_model(LensModel model, const std::vector<Lens>& lenses) {
+  if (model != LensModel::kAuto) return model;
   for (const Lens& lens : lenses)
     if (!lens.region.circle()) return LensModel::kField;
   return LensModel::kLift;
+}
+
+LensModel GeometricLens::model_for(const std::vector<Lens>& lenses) const {
+  return resolved_model(options_.model, lenses);
 }
 
 namespace {

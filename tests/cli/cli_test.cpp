@@ -335,6 +335,41 @@ TEST_F(Cli, StatsHoldEveryField) {
             t.at("solve").get<double>());
 }
 
+// An option the model does not read is warned about once and not echoed in the stats as if used;
+// what it reads is echoed.
+TEST_F(Cli, OptionsTheModelDoesNotReadAreWarnedAboutAndLeftOutOfTheStats) {
+  const std::string common = "magnify " + path("in.png") + " -o " + path("out.png") +
+                             " --lens circle:128,96,40:2 --mesh 40 --stats " + path("s.json");
+  const CliRun focus = run(common + " --weights cotan --profile sphere --extent-factor 3");
+  ASSERT_EQ(focus.code, 0) << focus.err;
+  EXPECT_EQ(focus.err,
+            "geolens: warning: --profile is ignored: the focus model magnifies the region "
+            "uniformly; the profile shapes the lift's bump; it is left out of the stats\n"
+            "geolens: warning: --extent-factor is ignored: the focus model solves its footprints "
+            "only; it is left out of the stats\n"
+            "geolens: warning: --weights is ignored: only the lift model flattens with other than "
+            "cotan weights; it is left out of the stats\n");
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  for (const char* unread : {"weights", "extent_factor", "texture", "alpha", "boundary"})
+    EXPECT_FALSE(s.at("options").contains(unread)) << unread;
+  EXPECT_EQ(s.at("options").at("mesh").get<int>(), 40);
+  EXPECT_TRUE(s.at("options").contains("mesh_tolerance"));
+  EXPECT_FALSE(s.at("lenses")[0].contains("profile"));
+  EXPECT_TRUE(s.at("lenses")[0].contains("footprint"));
+
+  const CliRun lift = run(common + " --model lift --weights cotan --footprint 5");
+  ASSERT_EQ(lift.code, 0) << lift.err;
+  EXPECT_NE(lift.err.find("--footprint is ignored: only the focus model has a footprint"),
+            std::string::npos)
+      << lift.err;
+  EXPECT_EQ(lift.err.find("--weights"), std::string::npos) << lift.err;
+  s = nlohmann::json::parse(std::ifstream(path("s.json")));
+  EXPECT_EQ(s.at("options").at("weights"), "cotan");
+  EXPECT_FALSE(s.at("options").contains("mesh_tolerance"));
+  EXPECT_EQ(s.at("lenses")[0].at("profile"), "gaussian");
+  EXPECT_FALSE(s.at("lenses")[0].contains("footprint"));
+}
+
 // With plain cotan weights, the rigid metric and a free boundary, the flattening minimizes the
 // ARAP energy: an independent gradient descent started from it finds nothing lower.
 TEST_F(Cli, FreeCotanFlatteningIsAConvergedArapMinimum) {

@@ -27,7 +27,8 @@ struct RunSource {
 };
 
 /// Everything a user needs to judge one run, as a JSON object (2-space indented, newline at the
-/// end): mesh size, convergence, flips, the options, per lens the requested and measured zoom and
+/// end): mesh size, convergence, flips, the options the model read (reads_option; per lens its
+/// profile or footprint likewise), per lens the requested and measured zoom and
 /// the focus measures (measure_foci), the distortion summary, and `timings_ms`: `load`, `lift`,
 /// `texture`, `factorize`, `iterate`, `solve` (the whole solve, those four included), `measure`,
 /// `render`, `save`, `other` (argument parsing and checks: total less the rest, >= 0) and

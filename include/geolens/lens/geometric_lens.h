@@ -55,6 +55,8 @@ enum class LensModel {
 };
 LensModel parse_lens_model(const std::string& name);  ///< "focus" | "lift" | "field" | "auto"
 std::string to_string(LensModel model);
+/// The model that solves `lenses` with `model` asked: kAuto resolved, any other as it is.
+LensModel resolved_model(LensModel model, const std::vector<Lens>& lenses);
 
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
