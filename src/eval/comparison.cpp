@@ -1,6 +1,8 @@
 #include "geolens/eval/comparison.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -11,15 +13,6 @@
 #include "geolens/lens/lens_method.h"
 
 namespace geolens {
-
-namespace {
-
-bool all_circles(const std::vector<Lens>& lenses) {
-  return std::all_of(lenses.begin(), lenses.end(),
-                     [](const Lens& lens) { return lens.region.circle().has_value(); });
-}
-
-}  // namespace
 
 double classic_radius(const Lens& lens, const LensOptions& options) {
   return options.model == LensModel::kFocus ? footprint_ratio(lens) * lens.region.reach()
@@ -36,18 +29,39 @@ CircleLens classic_target(const Lens& lens, const LensOptions& options, double z
 std::vector<std::string> comparison_methods(const std::vector<Lens>& lenses,
                                             const LensOptions& options, const char* function) {
   std::vector<std::string> names = {"geometric"};
-  if (!all_circles(lenses)) return names;
   for (size_t k = 0; k < lenses.size(); ++k) {
     for (size_t j = 0; j < k; ++j) {
       require((lenses[k].region.peak() - lenses[j].region.peak()).norm() >=
                   classic_radius(lenses[k], options) + classic_radius(lenses[j], options),
               function,
               "lenses " + std::to_string(j + 1) + " and " + std::to_string(k + 1) +
-                  " overlap; compare needs disjoint circles");
+                  " overlap; compare needs lenses whose disks (peak, radius " +
+                  number_text(classic_radius(lenses[j], options)) + " and " +
+                  number_text(classic_radius(lenses[k], options)) + " px) are apart");
     }
   }
   for (ClassicLens kind : kClassicLenses) names.push_back(to_string(kind));
   return names;
+}
+
+std::vector<Eigen::Vector2d> footprint_outline(const Lens& lens, const LensOptions& options) {
+  const Eigen::Vector2d peak = lens.region.peak();
+  std::vector<Eigen::Vector2d> outline;
+  const std::optional<std::vector<Eigen::Vector2d>> region = lens.region.outline();
+  if (options.model == LensModel::kFocus && region && !lens.region.circle()) {
+    const double ratio = footprint_ratio(lens);
+    for (const Eigen::Vector2d& p : *region) outline.push_back(peak + ratio * (p - peak));
+    return outline;
+  }
+  // A circle's footprint is its disk; so is that of a region without an outline, and the lift
+  // models have none: the disk is the one measured.
+  const double radius = classic_radius(lens, options);
+  constexpr int kSides = 256;
+  for (int i = 0; i < kSides; ++i) {
+    const double angle = 2 * M_PI * i / kSides;
+    outline.push_back(peak + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+  }
+  return outline;
 }
 
 Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses,
@@ -57,7 +71,7 @@ Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses
           "source size must be positive, got " + std::to_string(width) + " x " +
               std::to_string(height));
   require_mesh_vertices(baseline_mesh, "compare_lenses");
-  const bool classic = comparison_methods(lenses, options, "compare_lenses").size() > 1;
+  comparison_methods(lenses, options, "compare_lenses");
 
   // The geometric lens, then the classic lenses matched to its measured zoom, over the same disk.
   Comparison c;
@@ -69,6 +83,7 @@ Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses
   for (size_t k = 0; k < lenses.size(); ++k) {
     c.targets.push_back(
         classic_target(lenses[k], options, std::max(1.0, c.geometric.zoom_measured[k])));
+    c.footprints.push_back(footprint_outline(lenses[k], options));
     measure_radius.push_back(zoom_measure_radius(lenses[k].region.size(),
                                                  c.geometric.box.sizes().maxCoeff(), options.mesh));
   }
@@ -79,7 +94,6 @@ Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses
   for (const CircleLens& target : c.targets)
     classic_lenses.push_back(ClassicMethod::lens_for(target));
   for (ClassicLens kind : kClassicLenses) {
-    if (!classic) break;
     const ClassicMethod method(kind, {baseline_mesh, measure_radius});
     Magnification matched = method.magnify(classic_lenses, width, height);
     c.methods.push_back(

@@ -1,7 +1,9 @@
 #include "geolens/eval/comparison_images.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <iterator>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/render/annotate.h"
 #include "geolens/render/heatmap.h"
+#include "geolens/render/overlay.h"
 
 namespace geolens {
 
@@ -21,6 +24,44 @@ WarpMesh framed(const WarpMesh& warp, const Eigen::Vector2d& origin, double side
   out.screen = (warp.screen.rowwise() - origin.transpose()) * (tile / side);
   out.screen_width = out.screen_height = tile;
   return out;
+}
+
+// The closed loop `loop` (source pixels) in the tile's pixels (x = (p - origin) scale) as dashes
+// `dash` tile pixels long, as far apart, each a LineString.
+VectorData dashes(const std::vector<Eigen::Vector2d>& loop, const Eigen::Vector2d& origin,
+                  double scale, double dash) {
+  VectorData data;
+  std::vector<Eigen::Vector2d> current;
+  auto finish = [&] {
+    if (current.size() >= 2) {
+      Geometry line{GeometryType::kLineString, {Eigen::MatrixX2d(current.size(), 2)}, {}, {}};
+      for (size_t i = 0; i < current.size(); ++i) line.paths[0].row(Eigen::Index(i)) = current[i];
+      data.features.push_back({line, "", "null"});
+    }
+    current.clear();
+  };
+  bool on = true;
+  double left = dash;  // tile pixels to the end of this dash or gap
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Eigen::Vector2d a = (loop[i] - origin) * scale;
+    const Eigen::Vector2d b = (loop[(i + 1) % loop.size()] - origin) * scale;
+    const double length = (b - a).norm();
+    for (double t = 0; t < length;) {
+      const double step = std::min(length - t, left);
+      if (on) {
+        if (current.empty()) current.push_back(a + (b - a) * (t / length));
+        current.push_back(a + (b - a) * ((t + step) / length));
+      }
+      t += step;
+      left -= step;
+      if (left > 1e-9) continue;
+      if (on) finish();
+      on = !on;
+      left = dash;
+    }
+  }
+  finish();
+  return data;
 }
 
 }  // namespace
@@ -67,17 +108,22 @@ Image comparison_panel(const Comparison& comparison, const SourceFile& source, d
 
   const WarpMesh identity = identity_warp(comparison.width, comparison.height);
   Image input = to_rgb(render(framed(identity, origin, side, tile), source, options));
-  std::vector<Region> circles;
-  for (const CircleLens& lens : comparison.targets)
-    circles.push_back(Region::circle(lens.center, lens.radius));
-  outline_regions(input, circles, origin, tile / side, tile / side);
+  // The regions given, and dashed, the footprints.
+  std::vector<Region> regions;
+  for (const Lens& lens : comparison.lenses) regions.push_back(lens.region);
+  outline_regions(input, regions, origin, tile / side, tile / side);
+  OverlayStyle dashed;
+  dashed.line_colour = {220, 30, 30};
+  dashed.line_width = 1.5;
+  for (const std::vector<Eigen::Vector2d>& footprint : comparison.footprints)
+    draw_overlay(input, dashes(footprint, origin, tile / side, 6), dashed);
 
   for (size_t cell = 0; cell <= methods.size(); ++cell) {
     const int left = gap + int(cell % columns) * cell_width;
     const int top = gap + int(cell / columns) * cell_height;
     if (cell == 0) {
       draw_text(panel, left, top, "input", scale, ink);
-      draw_text(panel, left, top + line, "lens outlined", scale, ink);
+      draw_text(panel, left, top + line, "footprint dashed", scale, ink);
       paste(panel, input, left, top + label_height);
       // The notes go where the heatmap is in the other cells, in the largest font that fits.
       const char* notes[] = {"top: output",  "below: shape", "distortion",    "s1/s2 - 1",

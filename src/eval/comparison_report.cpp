@@ -27,6 +27,14 @@ std::string area_cell(const ZoneStatistics& zone) {
   return zone.triangles == 0 ? "—" : fixed_text(zone.area_distortion_mean, 3);
 }
 
+// The largest focus uniformity over the lenses, each over the region given (measure_foci): the
+// one definition every table and the stats use.
+double focus_uniformity(const ComparedMethod& m) {
+  double u = 0;
+  for (const FocusMeasure& f : m.foci) u = std::max(u, f.uniformity);
+  return u;
+}
+
 }  // namespace
 
 std::string comparison_json(const Comparison& c) {
@@ -36,19 +44,17 @@ std::string comparison_json(const Comparison& c) {
     nlohmann::json lenses = nlohmann::json::array();
     for (size_t k = 0; k < c.lenses.size(); ++k)
       lenses.push_back(lens_json(c.lenses[k], m.zoom_measured[k], m.foci[k], c.geometric.model));
-    report["methods"].push_back(
-        {{"name", m.name},
-         {"zoom_center", m.zoom_measured.front()},
-         {"focus_uniformity",
-          r.focus_uniformity > 0 ? nlohmann::json(r.focus_uniformity) : nlohmann::json(nullptr)},
-         {"distortion",
-          {{"focus", zone_json(r.focus)},
-           {"transition", zone_json(r.transition)},
-           {"context", zone_json(r.context)},
-           {"overall", zone_json(r.overall)}}},
-         {"occluded_percent", r.occluded_percent},
-         {"flipped", r.overall.flipped},
-         {"lenses", lenses}});
+    report["methods"].push_back({{"name", m.name},
+                                 {"zoom_center", m.zoom_measured.front()},
+                                 {"focus_uniformity", focus_uniformity(m)},
+                                 {"distortion",
+                                  {{"focus", zone_json(r.focus)},
+                                   {"transition", zone_json(r.transition)},
+                                   {"context", zone_json(r.context)},
+                                   {"overall", zone_json(r.overall)}}},
+                                 {"occluded_percent", r.occluded_percent},
+                                 {"flipped", r.overall.flipped},
+                                 {"lenses", lenses}});
   }
   return report.dump(2) + "\n";
 }
@@ -58,14 +64,18 @@ std::string comparison_markdown(const Comparison& c, const std::string& title) {
   md << "# geolens compare: " << title << "\n\n";
   for (size_t k = 0; k < c.targets.size(); ++k) {
     const CircleLens& target = c.targets[k];
-    md << "Lens " << k + 1 << ": disk at (" << fixed_text(target.center.x(), 1) << ", "
-       << fixed_text(target.center.y(), 1) << "), radius " << fixed_text(target.radius, 1)
-       << " px, zoom requested " << fixed_text(c.lenses[k].zoom, 3)
-       << ", measured on the geometric lens " << fixed_text(target.zoom, 3)
-       << (c.methods.size() > 1
-               ? "; every classic lens is matched to that zoom (same measure) and radius.\n"
-               : "; the classic lenses are radial and do not apply to polygon and mask lenses, "
-                 "whose regions below are taken in this disk.\n");
+    const Region& region = c.lenses[k].region;
+    md << "Lens " << k + 1 << ": "
+       << (region.circle() ? "disk" : "a " + region.kind() + "; its disk") << " at ("
+       << fixed_text(target.center.x(), 1) << ", " << fixed_text(target.center.y(), 1)
+       << "), radius " << fixed_text(target.radius, 1) << " px, zoom requested "
+       << fixed_text(c.lenses[k].zoom, 3) << ", measured on the geometric lens "
+       << fixed_text(target.zoom, 3)
+       << "; every classic lens is matched to that zoom (same measure) and radius"
+       << (region.circle() ? ".\n"
+                           : ": radial, the classic lenses magnify the disk about the region's "
+                             "peak that holds it (radius " +
+                                 fixed_text(region.reach(), 1) + " px), not the region's shape.\n");
   }
   md << "\nShape distortion is s1/s2 - 1 of each triangle's source -> screen Jacobian (0 = shape "
         "kept), mean (weighted by source area) / max per region. Regions by source position: "
@@ -73,19 +83,18 @@ std::string comparison_markdown(const Comparison& c, const std::string& title) {
         "zoom shows at full zoom on the inner fraction a of its disk), transition = the rest of "
         "the lens disk, "
         "context = outside. Zoom at centre = magnification_at the first lens's centre. Focus "
-        "uniformity = max / min magnification over the focus triangles of a lens (the largest "
-        "over the lenses). Occluded = source area not shown, percent of the image. — = no "
-        "triangle in that region.\n\n";
+        "uniformity = max / min magnification over the region a lens was given (the largest "
+        "over the lenses), as in the per-lens table below and in --stats. Occluded = source area "
+        "not shown, percent of the image. — = no triangle in that region.\n\n";
   md << "| method | zoom at centre | focus uniformity | focus | transition | context | overall "
         "| occluded % | flipped |\n";
   md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ComparedMethod& m : c.methods) {
     const RegionStatistics& r = m.regions;
     md << "| " << m.name << " | " << fixed_text(m.zoom_measured.front(), 3) << " | "
-       << (r.focus_uniformity > 0 ? fixed_text(r.focus_uniformity, 3) : "—") << " | "
-       << zone_cell(r.focus) << " | " << zone_cell(r.transition) << " | " << zone_cell(r.context)
-       << " | " << zone_cell(r.overall) << " | " << fixed_text(r.occluded_percent, 2) << " | "
-       << r.overall.flipped << " |\n";
+       << fixed_text(focus_uniformity(m), 3) << " | " << zone_cell(r.focus) << " | "
+       << zone_cell(r.transition) << " | " << zone_cell(r.context) << " | " << zone_cell(r.overall)
+       << " | " << fixed_text(r.occluded_percent, 2) << " | " << r.overall.flipped << " |\n";
   }
   md << "\nArea distortion, mean of max(a, 1/a) - 1 with a = s1 s2 the area scale (0 = area "
         "kept; the focus is magnified on purpose, so it is large there):\n\n";

@@ -104,7 +104,9 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
     ASSERT_EQ(m.at("lenses").size(), 1u);
     EXPECT_GE(m.at("lenses")[0].at("focus").at("uniformity").get<double>(), 1);
     EXPECT_NEAR(m.at("zoom_center").get<double>() / geometric_zoom, 1, 0.05);
-    EXPECT_GE(m.at("focus_uniformity").get<double>(), 1);
+    // One definition of focus uniformity: over the region given, as per lens and in --stats.
+    EXPECT_EQ(m.at("focus_uniformity").get<double>(),
+              m.at("lenses")[0].at("focus").at("uniformity").get<double>());
     const nlohmann::json& d = m.at("distortion");
     EXPECT_EQ(d.size(), 4u);
     for (const char* zone : {"focus", "transition", "context", "overall"}) {
@@ -119,13 +121,14 @@ TEST_F(CompareCli, WritesEveryOutputAndMatchesTheZoom) {
   }
   // What the measures must show: the zoom-in hides its ring (pi (150^2 - 75^2) of 1024^2, about
   // 5.1 %) and distorts nothing; Sarkar-Brown's rim distortion is about d = zoom - 1; flat tops
-  // keep the focus undistorted and uniform.
+  // keep their focus zone (a r / zoom) undistorted, but with the lift model the region given
+  // reaches past their flat top, so over it they are far from uniform.
   EXPECT_NEAR(methods[1].at("occluded_percent").get<double>(), 5.1, 0.15);
   EXPECT_LT(methods[1].at("distortion").at("overall").at("max").get<double>(), 1e-9);
   EXPECT_NEAR(methods[2].at("distortion").at("transition").at("max").get<double>(),
               geometric_zoom - 1, 0.25);
   for (size_t i : {4, 5, 6}) {
-    EXPECT_NEAR(methods[i].at("focus_uniformity").get<double>(), 1, 1e-9);
+    EXPECT_GT(methods[i].at("focus_uniformity").get<double>(), 1.5);
     EXPECT_LT(methods[i].at("distortion").at("focus").at("max").get<double>(), 1e-9);
   }
   for (const auto& entry : fs::directory_iterator(out))
@@ -155,23 +158,57 @@ TEST_F(CompareCli, SweepWritesTheTradeOff) {
             2);
 }
 
-// A polygon lens: the classic lenses, radial, do not apply; the geometric lens is measured over
-// the region given.
-TEST_F(CompareCli, PolygonLensIsMeasuredAlone) {
+// A polygon and a mask lens: the classic lenses, radial, are fitted to the region's disk (about
+// its peak, radius its reach), which their flat top shows at full zoom, so over the region given
+// they are uniform; the geometric lens too, within a smaller footprint; the report says so.
+TEST_F(CompareCli, PolygonAndMaskLensesAgainstClassicLensesFittedToTheirDisk) {
   write_input("in.png", 512);
   std::ofstream(path("square.txt")) << "200 200\n300 200\n300 280\n200 280\n";
-  const std::string out = path("out");
-  const CliRun r =
-      run("compare " + path("in.png") + " --lens polygon:" + path("square.txt") + ":2 -o " + out);
-  ASSERT_EQ(r.code, 0) << r.err;
-  const nlohmann::json methods = report(out).at("methods");
-  ASSERT_EQ(methods.size(), 1u);
-  EXPECT_EQ(methods[0].at("name"), "geometric");
-  const nlohmann::json& lens = methods[0].at("lenses")[0];
-  EXPECT_NEAR(lens.at("focus").at("zoom").get<double>(), 2, 0.05);
-  EXPECT_LT(lens.at("focus").at("uniformity").get<double>(), 1.05);
-  EXPECT_EQ(lens.at("displacement_beyond_footprint").get<double>(), 0);
-  EXPECT_FALSE(fs::exists(fs::path(out) / "fisheye.png"));
+  Image mask(512, 512, 1, 0);
+  for (int y = 230; y < 290; ++y)
+    for (int x = 220; x < 300; ++x) mask.at(x, y)[0] = 255;
+  save_image(path("mask.png"), mask);
+  for (const std::string lens : {"polygon:" + path("square.txt"), "mask:" + path("mask.png")}) {
+    SCOPED_TRACE(lens);
+    const std::string out = path("out_" + lens.substr(0, lens.find(':')));
+    const CliRun r = run("compare " + path("in.png") + " --lens " + lens + ":2 -o " + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json methods = report(out).at("methods");
+    ASSERT_EQ(methods.size(), std::size(kMethods));
+    for (size_t i = 0; i < std::size(kMethods); ++i) {
+      SCOPED_TRACE(kMethods[i]);
+      EXPECT_EQ(methods[i].at("name"), kMethods[i]);
+      EXPECT_TRUE(fs::exists(fs::path(out) / (std::string(kMethods[i]) + ".png")));
+      const nlohmann::json& focus = methods[i].at("lenses")[0].at("focus");
+      EXPECT_EQ(methods[i].at("focus_uniformity").get<double>(),
+                focus.at("uniformity").get<double>());
+      EXPECT_NEAR(methods[i].at("zoom_center").get<double>(), 2, 0.1);
+    }
+    for (size_t i : {0, 4, 5, 6, 7}) {  // the geometric lens and the flat tops
+      EXPECT_LT(methods[i].at("focus_uniformity").get<double>(), 1.02) << kMethods[i];
+      EXPECT_NEAR(methods[i].at("lenses")[0].at("focus").at("zoom").get<double>(), 2, 0.05)
+          << kMethods[i];
+    }
+    // The geometric lens's footprint follows the region, the classic ones fill its disk: it
+    // disturbs less of the image, and less on average (its largest distortion, at the corners, is
+    // not lower: docs/design.md, "compare with polygons and masks").
+    auto mean = [](const nlohmann::json& m) {
+      return m.at("distortion").at("overall").at("mean").get<double>();
+    };
+    auto footprint = [](const nlohmann::json& m) {
+      return m.at("lenses")[0].at("footprint_radius").get<double>();
+    };
+    for (size_t i : {4, 5, 6, 7}) {
+      EXPECT_LT(mean(methods[0]), mean(methods[i])) << kMethods[i];
+      EXPECT_LT(footprint(methods[0]), 0.9 * footprint(methods[i])) << kMethods[i];
+    }
+    std::ifstream md(fs::path(out) / "report.md");
+    std::stringstream text;
+    text << md.rdbuf();
+    EXPECT_NE(text.str().find("the classic lenses magnify the disk about the region's peak"),
+              std::string::npos)
+        << text.str();
+  }
 }
 
 // With the focus model (the default) the classic lenses get the focus lens's footprint as their

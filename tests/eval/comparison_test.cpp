@@ -136,9 +136,9 @@ TEST(Comparison, TargetsFollowTheLensModel) {
   EXPECT_DOUBLE_EQ(classic_radius(lens, test::auto_model()), 20);
 }
 
-// The classic lenses are radial and do not compose: a polygon is compared alone, overlapping
-// classic disks are refused naming the caller.
-TEST(Comparison, PolygonsAloneAndOverlappingCirclesRefused) {
+// The classic lenses are radial and do not compose: a polygon's are fitted to its disk, and
+// overlapping disks are refused naming the caller.
+TEST(Comparison, PolygonsFittedToTheirDiskAndOverlappingDisksRefused) {
   const std::vector<Lens> overlapping = {Lens{Region::circle({60, 60}, 20)},
                                          Lens{Region::circle({120, 120}, 20)}};
   try {
@@ -155,11 +155,35 @@ TEST(Comparison, PolygonsAloneAndOverlappingCirclesRefused) {
       InvalidInput);
 
   const Lens square{Region::polygon({{100, 100}, {160, 100}, {160, 150}, {100, 150}}), 2.0};
-  EXPECT_EQ(comparison_methods({square}, LensOptions{}), std::vector<std::string>{"geometric"});
-  const Comparison c = compare_lenses(kSide, kSide, {square}, small_mesh());
-  ASSERT_EQ(c.methods.size(), 1u);
+  EXPECT_EQ(comparison_methods({square}, LensOptions{}).size(), 8u);
+  const Comparison c = compare_lenses(kSide, kSide, {square}, small_mesh(), 80);
+  ASSERT_EQ(c.methods.size(), 8u);
   EXPECT_NEAR(c.methods[0].foci[0].zoom, 2, 0.05);
-  EXPECT_DOUBLE_EQ(c.targets[0].radius, classic_radius(square, small_mesh()));
+  // The disk about the peak holding the region, its flat top showing the region at full zoom.
+  const CircleLens& target = c.targets[0];
+  EXPECT_DOUBLE_EQ(target.radius, classic_radius(square, small_mesh()));
+  EXPECT_DOUBLE_EQ(target.radius, footprint_ratio(square) * square.region.reach());
+  EXPECT_EQ(target.center, square.region.peak());
+  EXPECT_NEAR(target.focus_fraction * target.radius / target.zoom, square.region.reach(), 1e-9);
+  // The footprint drawn: the square scaled by the ratio about its peak.
+  ASSERT_EQ(c.footprints[0].size(), 4u);
+  const std::vector<Eigen::Vector2d> corners = *square.region.outline();
+  for (size_t i = 0; i < 4; ++i)
+    EXPECT_LT((c.footprints[0][i] -
+               (target.center + footprint_ratio(square) * (corners[i] - target.center)))
+                  .norm(),
+              1e-9);
+}
+
+// A circle's footprint outline is its footprint's circle, whatever the model's disk.
+TEST(Comparison, FootprintOutlineOfACircleIsTheDiskMeasured) {
+  const Lens lens{Region::circle({100, 90}, 20), 2.0};
+  for (const LensOptions& options : {LensOptions{}, test::auto_model()}) {
+    const std::vector<Eigen::Vector2d> outline = footprint_outline(lens, options);
+    ASSERT_GE(outline.size(), 64u);
+    for (const Eigen::Vector2d& p : outline)
+      EXPECT_NEAR((p - Eigen::Vector2d(100, 90)).norm(), classic_radius(lens, options), 1e-9);
+  }
 }
 
 // The JSON parses, holds one entry per method in order, and each lens is the object

@@ -25,14 +25,22 @@ double classic_radius(const Lens& lens, const LensOptions& options);
 /// min(0.95, zoom / footprint ratio)), else the default fraction (kFocusFraction).
 CircleLens classic_target(const Lens& lens, const LensOptions& options, double zoom);
 
-/// The methods compare_lenses measures, in its order: "geometric", then, when every lens is a
-/// circle (the classic lenses are radial), every classic lens in kClassicLenses order
-/// (to_string(ClassicLens)). Throws InvalidInput naming `function` when circles' classic disks
-/// (classic_radius) overlap: the classic lenses do not compose. Decides a tool's output files
-/// before any work.
+/// The methods compare_lenses measures, in its order: "geometric", then every classic lens in
+/// kClassicLenses order (to_string(ClassicLens)). The classic lenses are radial: for a polygon or
+/// a mask they are fitted to the region's disk (about its peak, radius its reach), which their
+/// flat top shows at full zoom. Throws InvalidInput naming `function` when two lenses' classic
+/// disks (classic_radius) overlap: the classic lenses do not compose. Decides a tool's output
+/// files before any work.
 std::vector<std::string> comparison_methods(const std::vector<Lens>& lenses,
                                             const LensOptions& options,
                                             const char* function = "comparison_methods");
+
+/// The outline drawn dashed around a lens (source pixels, a closed loop without its closing
+/// vertex): for the focus model its footprint (the region scaled by footprint_ratio about its
+/// peak, focus_lens.h) where the region has an outline (a polygon, a mask blob traced as one),
+/// else the disk of classic_radius about the peak (a circle's footprint; for the lift models the
+/// disk measured).
+std::vector<Eigen::Vector2d> footprint_outline(const Lens& lens, const LensOptions& options);
 
 /// One method of a comparison and what was measured on it.
 struct ComparedMethod {
@@ -53,17 +61,18 @@ struct Comparison {
   /// per lens: classic_target at the zoom the geometric lens measured (at least 1); the zones
   /// of every method are taken in these disks
   std::vector<CircleLens> targets;
-  std::vector<ComparedMethod> methods;  ///< comparison_methods(lenses) order
+  std::vector<std::vector<Eigen::Vector2d>> footprints;  ///< per lens: footprint_outline
+  std::vector<ComparedMethod> methods;                   ///< comparison_methods(lenses) order
   /// The paper's Eq. 7 energy of the geometric lens's flattening (eq7_energy, summed over the
   /// solved mesh: with a local extent the patch), pixels^2.
   double eq7_energy = 0;
 };
 
-/// Solves `lenses` with the geometric lens on a width x height source (`options`), then, when
-/// every lens is a circle, builds each classic lens matched to the zoom it measured
+/// Solves `lenses` with the geometric lens on a width x height source (`options`), then builds
+/// each classic lens matched to the zoom it measured
 /// (match_classic_lens over zoom_measure_radius, on a grid of `baseline_mesh` vertices along the
 /// long side) and measures every warp: triangles, zones of the targets, foci of the lenses.
-/// Throws InvalidInput for an invalid lens, option or size, overlapping circles
+/// Throws InvalidInput for an invalid lens, option or size, overlapping disks
 /// (comparison_methods) or baseline_mesh outside [4, 1000]; SolverError if a solve fails.
 Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses,
                           const LensOptions& options, int baseline_mesh = 200);

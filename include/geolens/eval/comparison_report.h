@@ -10,7 +10,8 @@
 namespace geolens {
 
 /// {"methods": [...]}, one object per method in order: `name`, `zoom_center` (zoom_measured[0]),
-/// `focus_uniformity` (null when no focus triangle), `distortion` {`focus`, `transition`,
+/// `focus_uniformity` (the largest over the lenses of `focus.uniformity` below: over the region
+/// given), `distortion` {`focus`, `transition`,
 /// `context`, `overall`: {`mean`, `max`} shape distortion, null in a zone with no triangle},
 /// `occluded_percent`, `flipped`, and `lenses`: per lens the same object as run_stats_json's
 /// lenses without `height` and `zoom_fit` (`kind`, `bbox`, `peak`, `size`, `center` and
