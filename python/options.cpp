@@ -120,7 +120,11 @@ LensOptions lens_options(const py::kwargs& kwargs, const char* function) {
                            ", got " + std::string(py::repr(value)));
     }
   }
-  validate(options);
+  try {
+    validate(options);
+  } catch (const InvalidOption& e) {  // in Python's words: the keyword, then what is wrong
+    throw InvalidInput(std::string(function) + "(): " + e.option + " " + e.problem);
+  }
   return options;
 }
 

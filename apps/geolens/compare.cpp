@@ -63,7 +63,7 @@ int run_compare(const CompareArgs& a) {
   require_panel_tile(a.tile, "--tile");
   require_mesh_vertices(a.baseline_mesh, "--baseline-mesh");
   require(std::isfinite(a.heat_max) && a.heat_max >= 0, "--heat-max",
-          "must be >= 0, got " + std::to_string(a.heat_max));
+          "must be >= 0, got " + number_text(a.heat_max));
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
   cli::add_source_inputs(files, a.input, a.source);

@@ -6,7 +6,6 @@
 #include <iostream>
 
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/lens/unread_options.h"
 
@@ -67,6 +66,27 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
 }
 
+namespace {
+
+// `option` as the CLI names it: "mesh_tolerance" -> "--mesh-tolerance".
+std::string flag(const std::string& option) {
+  std::string text = "--" + option;
+  std::replace(text.begin(), text.end(), '_', '-');
+  return text;
+}
+
+// What `work` returns, an InvalidOption it throws said as the CLI says it: "--mesh-tolerance: ...".
+template <class Work>
+auto naming_options(Work work) {
+  try {
+    return work();
+  } catch (const InvalidOption& e) {
+    throw InvalidInput(flag(e.option) + ": " + e.problem);
+  }
+}
+
+}  // namespace
+
 LensOptions parse_options(const LensArgs& a) {
   LensOptions options;
   options.mesh = a.mesh;
@@ -82,11 +102,8 @@ LensOptions parse_options(const LensArgs& a) {
   options.flatten.boundary = parse_boundary(a.boundary);
   options.flatten.tolerance = a.tolerance;
   options.flatten.max_iterations = a.max_iterations;
-  require(a.threads >= 0 && a.threads <= ThreadPool::kMaxThreads, "--threads",
-          "must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
-              std::to_string(a.threads));
   options.flatten.threads = a.threads;
-  validate(options);
+  naming_options([&] { validate(options); });
   require_zoom(a.zoom, "--zoom");
   parse_profile(a.profile);
   return options;
@@ -97,7 +114,9 @@ std::vector<Lens> parse_lenses(const LensArgs& a, int width, int height) {
   std::vector<Lens> lenses;
   for (const std::string& spec : a.lenses) {
     std::vector<std::string> warnings;
-    for (Lens& lens : parse_lens_spec(spec, a.zoom, profile, a.footprint, width, height, &warnings))
+    for (Lens& lens : naming_options([&] {
+           return parse_lens_spec(spec, a.zoom, profile, a.footprint, width, height, &warnings);
+         }))
       lenses.push_back(std::move(lens));
     for (const std::string& w : warnings) std::cerr << "geolens: warning: " << w << "\n";
   }
@@ -130,12 +149,9 @@ std::pair<int, int> parse_size(const std::string& text) {
 }
 
 void warn_about_unread_options(const LensOptions& options, const std::vector<Lens>& lenses) {
-  for (const UnreadOption& o : unread_options(options, lenses)) {
-    std::string flag = "--" + o.name;
-    std::replace(flag.begin(), flag.end(), '_', '-');
-    std::cerr << "geolens: warning: " << flag << " is ignored: " << o.reason
+  for (const UnreadOption& o : unread_options(options, lenses))
+    std::cerr << "geolens: warning: " << flag(o.name) << " is ignored: " << o.reason
               << "; it is left out of the stats\n";
-  }
 }
 
 void warn_about_zooms(const std::vector<Lens>& lenses, const LensResult& result) {

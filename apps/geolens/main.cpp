@@ -186,7 +186,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "geolens: error: " << e.what() << " (see geolens --help)\n";
+    // A first word that is no command: named, rather than CLI11's "A subcommand is required".
+    const std::string first = argc > 1 ? argv[1] : "";
+    if (!first.empty() && first[0] != '-' && app.get_subcommands().empty())
+      std::cerr << "geolens: error: unknown command '" << first
+                << "' (expected magnify, compare or map; see geolens --help)\n";
+    else
+      std::cerr << "geolens: error: " << e.what() << " (see geolens --help)\n";
     return 2;
   }
   try {

@@ -111,7 +111,7 @@ int run_map(const MapArgs& a) {
           "the lenses need the source's size: give --image FILE or --size WxH");
   // A hundredth of a pixel is finer than any output shows; 5e-5 made 8.4 GB of a 4.6 KB file.
   require(a.max_segment >= 0.01, "--max-segment",
-          "must be at least 0.01 pixels, got " + std::to_string(a.max_segment));
+          "must be at least 0.01 pixels, got " + number_text(a.max_segment));
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
   if (a.input != "-") files.add_input("the input", a.input);

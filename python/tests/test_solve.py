@@ -135,12 +135,16 @@ def test_same_zoom_and_flips_as_the_cli(spec, lens, options, run_cli):
         stats["lenses"][0]["zoom_requested"], rel=0.1)
 
 
-def test_bad_options_raise_with_the_clis_message(run_cli):
-    cli = run_cli("--lens", "circle:500,500,100", "--mesh", "2")
-    with pytest.raises(ValueError) as raised:
-        geolens.GeometricLens(1024, 1024, mesh=2)
-    assert cli.returncode == 2
-    assert cli.stderr == f"geolens: error: {raised.value}\n"
+def test_bad_options_raise_with_the_clis_message_in_pythons_terms(run_cli):
+    # The same problem, the option named as each face names it: --mesh-tolerance, mesh_tolerance.
+    for option, value in (("mesh", 2), ("mesh_tolerance", 1e-9), ("subdivide", 9)):
+        cli = run_cli("--lens", "circle:500,500,100", "--" + option.replace("_", "-"), str(value))
+        with pytest.raises(ValueError) as raised:
+            geolens.GeometricLens(1024, 1024, **{option: value})
+        assert cli.returncode == 2
+        problem = str(raised.value).removeprefix(f"GeometricLens(): {option} ")
+        assert problem != str(raised.value)
+        assert cli.stderr == f"geolens: error: --{option.replace('_', '-')}: {problem}\n"
 
 
 def test_lens_outside_the_image_raises_with_the_clis_message(run_cli):

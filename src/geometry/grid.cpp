@@ -51,12 +51,12 @@ Grid make_grid(double width, double height, int vertices_long_side) {
   return g;
 }
 
-void require_mesh_vertices(int vertices_long_side, const char* function) {
-  require(vertices_long_side >= kMinMeshVertices && vertices_long_side <= kMaxMeshVertices,
-          function,
-          "mesh must be in [" + std::to_string(kMinMeshVertices) + ", " +
-              std::to_string(kMaxMeshVertices) + "] vertices per side, got " +
-              std::to_string(vertices_long_side));
+void require_mesh_vertices(int vertices_long_side, const char* function, const char* option) {
+  require_option(vertices_long_side >= kMinMeshVertices && vertices_long_side <= kMaxMeshVertices,
+                 function, option,
+                 "must be in [" + std::to_string(kMinMeshVertices) + ", " +
+                     std::to_string(kMaxMeshVertices) + "] vertices per side, got " +
+                     std::to_string(vertices_long_side));
 }
 
 }  // namespace geolens

@@ -190,12 +190,12 @@ std::vector<int> marked_triangles(const Bisector& mesh, const std::vector<double
 
 void validate(const SubdivisionOptions& options) {
   require(std::isfinite(options.max_stretch) && options.max_stretch > 1, "validate",
-          "max stretch must be > 1, got " + std::to_string(options.max_stretch));
+          "max stretch must be > 1, got " + number_text(options.max_stretch));
   require(std::isfinite(options.min_angle) && options.min_angle >= 0 && options.min_angle < 60,
           "validate",
-          "min angle must be in [0, 60) degrees, got " + std::to_string(options.min_angle));
-  require(options.max_levels >= 0 && options.max_levels <= 8, "validate",
-          "levels must be in [0, 8], got " + std::to_string(options.max_levels));
+          "min angle must be in [0, 60) degrees, got " + number_text(options.min_angle));
+  require_option(options.max_levels >= 0 && options.max_levels <= 8, "validate", "subdivide",
+                 "must be in [0, 8] bisection rounds, got " + std::to_string(options.max_levels));
 }
 
 PlanarMesh subdivide(const PlanarMesh& mesh,

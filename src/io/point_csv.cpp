@@ -73,7 +73,7 @@ PointTable parse_point_csv(const std::string& text, const std::string& name) {
     first = false;
     require(x && y && f.has_y, "parse_point_csv",
             name + ":" + std::to_string(number_of_line) +
-                ": expected two finite numbers \"x,y\" first, got \"" + std::string(line) + "\"");
+                ": expected two finite numbers \"x,y\" first, got \"" + quoted_line(line) + "\"");
     coordinates.push_back(*x);
     coordinates.push_back(*y);
     table.rest.emplace_back(f.rest);

@@ -94,13 +94,16 @@ void RunFiles::check() const {
     bool added = false;
     for (const Named& f : folders_) added = added || same_file(f.path, parent);
     if (!added) require_parent(o.option, o.target);
-    // Checked now, not found once the work is done.
-    if (o.in_place)
-      require(::access(o.target.c_str(), W_OK) == 0, option,
-              "cannot write '" + o.path + "': " + std::strerror(errno));
-    else if (!added)
-      require(::access(parent.empty() ? "." : parent.c_str(), W_OK | X_OK) == 0, option,
+    // Checked now, not found once the work is done; errno read after access() sets it (a
+    // function's arguments are evaluated in no set order).
+    if (o.in_place) {
+      const bool writable = ::access(o.target.c_str(), W_OK) == 0;
+      require(writable, option, "cannot write '" + o.path + "': " + std::strerror(errno));
+    } else if (!added) {
+      const bool writable = ::access(parent.empty() ? "." : parent.c_str(), W_OK | X_OK) == 0;
+      require(writable, option,
               "cannot write in the folder of '" + o.path + "': " + std::strerror(errno));
+    }
     for (const Named& in : inputs_)
       require(!same_file(in.path, o.path), option,
               "'" + o.path + "' would overwrite " + in.option + " '" + in.path + "'");
@@ -124,18 +127,21 @@ std::string RunFiles::staged(const std::string& path) {
 }
 
 void RunFiles::commit() {
+  // Devices and FIFOs first, their bytes written into them (the staged file removed either way):
+  // a write that fails there (/dev/full) leaves no regular output renamed into place.
   for (const Output& o : outputs_) {
-    std::error_code error;
-    if (!o.in_place) {
-      std::filesystem::rename(o.temporary, o.target, error);
-      if (error) throw IoError("cannot write '" + o.path + "': " + error.message());
-      continue;
-    }
-    // A device or a FIFO: its bytes written into it, the staged file removed either way.
+    if (!o.in_place) continue;
     const std::string bytes = read_file(o.temporary, "RunFiles::commit", "staged");
+    std::error_code error;
     std::filesystem::remove(o.temporary, error);
     const std::string reason = write_bytes(o.target, bytes.data(), bytes.size());
     if (!reason.empty()) throw IoError("cannot write '" + o.path + "': " + reason);
+  }
+  for (const Output& o : outputs_) {
+    if (o.in_place) continue;
+    std::error_code error;
+    std::filesystem::rename(o.temporary, o.target, error);
+    if (error) throw IoError("cannot write '" + o.path + "': " + error.message());
   }
   committed_ = true;
 }

@@ -57,16 +57,16 @@ std::string to_string(Boundary boundary) {
 
 void validate(const FlattenOptions& o) {
   const double alpha_max = o.metric == Metric::kPaper ? 1.0 : 1.0 + 1e-12;
-  require(std::isfinite(o.alpha) && o.alpha >= 0 && o.alpha < alpha_max, "validate",
-          "alpha must be in " + std::string(o.metric == Metric::kPaper ? "[0, 1)" : "[0, 1]") +
-              " for metric " + to_string(o.metric) + ", got " + std::to_string(o.alpha));
-  require(std::isfinite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "validate",
-          "tolerance must be in (0, 1), got " + std::to_string(o.tolerance));
-  require(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate",
-          "max iterations must be in [1, 100000], got " + std::to_string(o.max_iterations));
-  require(o.threads >= 0 && o.threads <= ThreadPool::kMaxThreads, "validate",
-          "threads must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
-              std::to_string(o.threads));
+  require_option(std::isfinite(o.alpha) && o.alpha >= 0 && o.alpha < alpha_max, "validate", "alpha",
+                 "must be in " + std::string(o.metric == Metric::kPaper ? "[0, 1)" : "[0, 1]") +
+                     " for metric " + to_string(o.metric) + ", got " + number_text(o.alpha));
+  require_option(std::isfinite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "validate",
+                 "tolerance", "must be in (0, 1), got " + number_text(o.tolerance));
+  require_option(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate", "max_iterations",
+                 "must be in [1, 100000], got " + std::to_string(o.max_iterations));
+  require_option(o.threads >= 0 && o.threads <= ThreadPool::kMaxThreads, "validate", "threads",
+                 "must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
+                     std::to_string(o.threads));
 }
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,

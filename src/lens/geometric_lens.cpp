@@ -86,15 +86,16 @@ std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const Le
 }
 
 void validate(const LensOptions& o) {
-  require(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
-          "validate", "extent factor must be in (1, 100], got " + std::to_string(o.extent_factor));
+  require_option(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
+                 "validate", "extent_factor",
+                 "must be in (1, 100], got " + number_text(o.extent_factor));
   require_mesh_vertices(o.mesh, "validate");
-  if (o.draft_mesh != 0) require_mesh_vertices(o.draft_mesh, "validate");
+  if (o.draft_mesh != 0) require_mesh_vertices(o.draft_mesh, "validate", "draft_mesh");
   // Finer than a hundredth of a pixel shows nothing and refines without end (1e-9 ran away).
-  require(std::isfinite(o.mesh_tolerance) && (o.mesh_tolerance == 0 || o.mesh_tolerance >= 0.01),
-          "validate",
-          "mesh tolerance must be 0 (no refinement) or at least 0.01 pixels, got " +
-              number_text(o.mesh_tolerance));
+  require_option(
+      std::isfinite(o.mesh_tolerance) && (o.mesh_tolerance == 0 || o.mesh_tolerance >= 0.01),
+      "validate", "mesh_tolerance",
+      "must be 0 (no refinement) or at least 0.01 pixels, got " + number_text(o.mesh_tolerance));
   require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
           "zoom tolerance must be positive");
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");

@@ -9,8 +9,8 @@ namespace geolens {
 
 void require_zoom(double zoom, const char* function) {
   require(std::isfinite(zoom) && zoom >= kMinZoom && zoom <= kMaxZoom, function,
-          "zoom must be in [" + std::to_string(int(kMinZoom)) + ", " +
-              std::to_string(int(kMaxZoom)) + "], got " + std::to_string(zoom));
+          "zoom must be in [" + number_text(kMinZoom) + ", " + number_text(kMaxZoom) + "], got " +
+              number_text(zoom));
 }
 
 void validate_lens(const Lens& lens, double width, double height) {
@@ -18,7 +18,7 @@ void validate_lens(const Lens& lens, double width, double height) {
     return p.x() >= 0 && p.x() <= width && p.y() >= 0 && p.y() <= height;
   };
   auto where = [](const Eigen::Vector2d& p) {
-    return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
+    return "(" + number_text(p.x()) + ", " + number_text(p.y()) + ")";
   };
   const std::string image = std::to_string(int(width)) + "x" + std::to_string(int(height));
   // A circle's centre, a polygon's vertices: the points that define the region.
@@ -33,11 +33,11 @@ void validate_lens(const Lens& lens, double width, double height) {
           "the " + lens.region.kind() + " reaches " + number_text(lens.region.reach()) +
               " px from its centre, less than half a pixel");
   require_zoom(lens.zoom, "validate_lens");
-  require(lens.footprint == 0 || (std::isfinite(lens.footprint) && lens.footprint > lens.zoom &&
-                                  lens.footprint <= 100),
-          "validate_lens",
-          "footprint must be 0 (default) or in (zoom, 100] = (" + std::to_string(lens.zoom) +
-              ", 100], got " + std::to_string(lens.footprint));
+  require_option(lens.footprint == 0 || (std::isfinite(lens.footprint) &&
+                                         lens.footprint > lens.zoom && lens.footprint <= 100),
+                 "validate_lens", "footprint",
+                 "must be 0 (default) or in (zoom, 100] = (" + number_text(lens.zoom) +
+                     ", 100], got " + number_text(lens.footprint));
 }
 
 double lens_height(const Lens& lens, double h0, const Eigen::Vector2d& p) {

@@ -292,9 +292,9 @@ void validate(const WarpMesh& mesh, const RenderOptions& options) {
           "threads must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
               std::to_string(options.threads));
   require(std::isfinite(options.source_scale) && options.source_scale > 0, fn,
-          "source_scale must be finite and > 0, got " + std::to_string(options.source_scale));
+          "source_scale must be finite and > 0, got " + number_text(options.source_scale));
   require(options.level_band > 0 && options.level_band <= 1, fn,
-          "level_band must be in (0, 1], got " + std::to_string(options.level_band));
+          "level_band must be in (0, 1], got " + number_text(options.level_band));
   require(mesh.screen_width > 0 && mesh.screen_height > 0, fn,
           "mesh.screen_width and mesh.screen_height must be > 0, got " +
               std::to_string(mesh.screen_width) + " x " + std::to_string(mesh.screen_height));

@@ -169,7 +169,7 @@ class Mapper {
 
 MappedFeatures map_features(const VectorData& data, const WarpMap& map, const MapOptions& options) {
   require(options.max_segment > 0, "map_features",
-          "max_segment must be > 0 pixels, got " + std::to_string(options.max_segment));
+          "max_segment must be > 0 pixels, got " + number_text(options.max_segment));
   const std::string problem = vector_data_problem(data);
   require(problem.empty(), "map_features", problem);
   Mapper mapper(map, options);

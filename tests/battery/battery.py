@@ -62,37 +62,16 @@ FILE_SIZE_LIMIT = 256 << 20
 
 # Cases that fail because of a defect of the program, not of the case: what it does. Remove an
 # entry once the program is fixed (the battery fails while a listed case passes).
-POLYGON_UNNAMED = "the polygon file's outline is refused without naming the file"
-CONTROL = "the line quoted from the file is printed raw: control characters reach the terminal"
-LONG_NUMBER = "1e308 printed with all its 309 digits (std::to_string, not number_text)"
 RGBA_FIRST = ("every PNG is decoded through a zero-filled RGBA buffer of its header's size "
               "(up to 1 GiB) before its data is read")
 KNOWN_DEFECTS = {
-    "cli_unknown_subcommand": "'A subcommand is required': 'frobnicate' is not named",
     "png_bad_crc": "a PNG whose IDAT checksum is wrong is decoded, exit 0",
     "png_damaged_idat_byte": "a damaged PNG (one data byte changed) decodes to made-up pixels",
     "png_header_claims_100000_squared": "libspng's 'image width exceeds user limit', no size",
     "png_header_claims_16384_rgba_short": RGBA_FIRST + ": 1.04 GB for a 120-byte file",
     "png_zlib_bomb_16384_grey": RGBA_FIRST + ": 1.3 GB for a 260 KB grey file",
-    "mask_all_speck": "'Region::from_mask: every blob ...': an internal name, no mask file named",
-    "mask_empty": "'Region::from_mask: the mask has no non-zero pixel': internal, no file named",
-    "polygon_self_intersecting": POLYGON_UNNAMED,
-    "polygon_two_vertices": POLYGON_UNNAMED,
-    "polygon_empty_file": POLYGON_UNNAMED,
-    "compare_self_intersecting_polygon": POLYGON_UNNAMED,
-    "polygon_1e308": "'the polygon has zero area' for a vertex at x = 1e308 (it reaches outside)",
-    "polygon_100k_zigzag_self_intersecting": "quadratic: 10 000 vertices 0.45 s, 100 000 ~45 s",
-    "polygon_binary_one_line": CONTROL,
-    "csv_binary": CONTROL,
-    "lens_nan_centre": "'Region::circle: centre is not finite': an internal name",
-    "lens_centre_1e308": LONG_NUMBER,
-    "option_footprint_1e308": LONG_NUMBER,
     "lens_200_circles": "quadratic in the lens count: 50 circles 2 s, 100 7 s, 200 31 s",
-    "option_subdivide_9": "'validate: levels must be in [0, 8]': the option is --subdivide",
-    "output_in_unwritable_folder": "'No such file or directory': errno read before access() set it",
-    "stats_dev_full": "exit 1 as it should, but out.png is left written",
     "svg_size_1e30": "an SVG 1e30 px wide is framed at 1 x 1 and the lens refused as outside it",
-    "map_max_segment_1e_300": "'got 0.000000' for --max-segment 1e-300",
     "map_line_to_1e300": "a line reaching x = 1e300 is refused by densify, not cut at the border",
     "map_line_densified_to_15m_vertices": "15 M vertices under the 2^24 bound: 1.9 GB, then "
                                           "'terminate called ... std::bad_alloc' (SIGABRT)",

@@ -73,12 +73,21 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --alpha nan", "alpha");
   expect_refused("magnify " + in + out + " --lens circle:300,50,20", "outside");
   expect_refused("magnify " + in + out + " --lens circle:50,-1,20", "outside");
-  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 3", "mesh");
-  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "mesh");
+  // Options out of range are named as the user wrote them, whichever part of the library checks.
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 3", "--mesh: must be");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh 1001", "--mesh: must be");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance -1",
-                 "mesh tolerance");
+                 "--mesh-tolerance: must be");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --mesh-tolerance 1e-9",
-                 "mesh tolerance must be 0 (no refinement) or at least 0.01 pixels, got 1e-09");
+                 "--mesh-tolerance: must be 0 (no refinement) or at least 0.01 pixels, got 1e-09");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --subdivide 9",
+                 "--subdivide: must be in [0, 8]");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --extent-factor 0.5",
+                 "--extent-factor: must be in (1, 100], got 0.5");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --max-iterations 0",
+                 "--max-iterations: must be");
+  expect_refused("magnify " + in + out + " --lens circle:50,50,20 --footprint 1e308",
+                 "--footprint: must be 0 (default) or in (zoom, 100] = (2, 100], got 1e+308");
   expect_refused("magnify " + in + " -o " + path("nowhere/out.png") + " --lens circle:50,50,20",
                  "nowhere");
   expect_refused("magnify " + in + " -o " + in + " --lens circle:50,50,20", "input");

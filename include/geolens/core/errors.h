@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace geolens {
 
@@ -11,6 +12,14 @@ namespace geolens {
 /// or corrupt input file. The CLI maps it to exit code 2.
 struct InvalidInput : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
+};
+
+/// An option out of range: InvalidInput "<function>: <option> <problem>" that keeps the option,
+/// named as the faces name it, words joined by '_' ("mesh_tolerance": the CLI's --mesh-tolerance,
+/// Python's mesh_tolerance=), and the problem apart, so that a face says it in its own terms.
+struct InvalidOption : InvalidInput {
+  InvalidOption(const char* function, const std::string& option, const std::string& problem);
+  std::string option, problem;
 };
 
 /// A numerical failure at run time (a factorization that is not positive definite, ...).
@@ -33,6 +42,13 @@ struct Cancelled : std::runtime_error {
 /// Throws InvalidInput("<function>: <what>") unless `condition` holds.
 void require(bool condition, const char* function, const std::string& what);
 
+/// Throws InvalidOption(function, option, problem) unless `condition` holds.
+void require_option(bool condition, const char* function, const std::string& option,
+                    const std::string& problem);
+/// A line of a user's file as a message quotes it: control characters and bytes outside ASCII
+/// written \xNN (so none reaches the terminal), cut after 60 characters with its length said
+/// ("...(52000000 characters)").
+std::string quoted_line(std::string_view line);
 /// `value` for a message: the shortest text that reads back to it (180.00000000000014, 1e-09,
 /// not std::to_string's rounded 180.000000 and 0.000000).
 std::string number_text(double value);

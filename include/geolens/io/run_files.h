@@ -43,9 +43,10 @@ class RunFiles {
   /// added.
   std::string staged(const std::string& path);
 
-  /// Renames every temporary file into place, one by one (an output renamed before a later one
-  /// fails stays); copies it into an output written in place. Throws IoError naming the output
-  /// that failed.
+  /// Copies every output written in place (a device, a FIFO) into it, then renames every other
+  /// temporary file into place, one by one: a device that fails (/dev/full) leaves no output
+  /// renamed; a rename that fails leaves those before it. Throws IoError naming the output that
+  /// failed.
   void commit();
 
   /// Removes the temporary files and the folders staged() made (if empty) with unlink and rmdir
