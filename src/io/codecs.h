@@ -22,8 +22,6 @@ enum class Depth { kRound, kNonZero };
 /// The largest image decoded: 2^28 pixels (16384 x 16384; 1 GiB as RGBA), so a header that
 /// claims more is refused before any allocation.
 constexpr uint64_t kMaxPixels = uint64_t(1) << 28;
-/// The most bytes a decoder fills on the way (a 16-bit PNG is decoded as 8 bytes a pixel).
-constexpr size_t kMaxDecodedBytes = size_t(1) << 30;
 
 bool is_png(const std::vector<uint8_t>& bytes);
 bool is_jpeg(const std::vector<uint8_t>& bytes);

@@ -30,16 +30,27 @@ bool is_png(const std::vector<uint8_t>& bytes) {
 }
 
 Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
+  // The size from the header's own bytes (big-endian width and height after the signature and
+  // the IHDR chunk's length and type), so a size too large is refused in geolens's words.
+  if (bytes.size() >= 24) {
+    auto word = [&](size_t at) {
+      return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+             uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+    };
+    const uint32_t width = word(16), height = word(20);
+    if (width > kMaxSide || height > kMaxSide || uint64_t(width) * height > kMaxPixels)
+      throw CodecError("PNG: " + std::to_string(width) + " x " + std::to_string(height) +
+                       " pixels is more than geolens reads (2^28, sides up to 2^16)");
+  }
   Context ctx(spng_ctx_new(0), &spng_ctx_free);
   if (!ctx) throw CodecError("out of memory");
   check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "PNG");
   check(spng_set_chunk_limits(ctx.get(), kMaxChunk, kMaxChunk), "PNG");
+  // A damaged chunk is refused, not decoded into made-up pixels.
+  check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "PNG");
   check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "PNG");
   spng_ihdr ihdr{};
   check(spng_get_ihdr(ctx.get(), &ihdr), "PNG header");
-  if (uint64_t(ihdr.width) * ihdr.height > kMaxPixels)
-    throw CodecError("PNG: " + std::to_string(ihdr.width) + " x " + std::to_string(ihdr.height) +
-                     " pixels is more than geolens reads (2^28)");
   spng_trns trns{};
   const bool has_trns = spng_get_trns(ctx.get(), &trns) == 0;
   int channels = 4;
@@ -57,38 +68,47 @@ Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
     default:
       channels = 4;
   }
-  // Decoded as RGBA at the file's depth (8 or 16 bits), then reduced to its channels.
+  // Decoded a row at a time as RGBA at the file's depth (8 or 16 bits), each row reduced to the
+  // file's channels as it comes: the only image held is the result, whose pages are touched
+  // only as rows arrive (a 120-byte file claiming 16384 x 16384 RGBA took 1 GiB, zero-filled,
+  // before its data was found missing).
   const bool deep = ihdr.bit_depth == 16;
   const int format = deep ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8;
-  size_t size = 0;
-  check(spng_decoded_image_size(ctx.get(), format, &size), "PNG");
-  // 2^28 pixels at 16 bits a sample would be 2 GiB of RGBA before the image is made.
-  if (size > kMaxDecodedBytes)
-    throw CodecError("PNG: " + std::to_string(ihdr.width) + " x " + std::to_string(ihdr.height) +
-                     " pixels at " + std::to_string(int(ihdr.bit_depth)) + " bits decode to " +
-                     std::to_string(size) + " bytes, more than geolens reads (2^30)");
-  std::vector<uint8_t> rgba(size);
-  check(spng_decode_image(ctx.get(), rgba.data(), size, format, SPNG_DECODE_TRNS), "PNG data");
-  Image image(int(ihdr.width), int(ihdr.height), channels);
-  const size_t n = size_t(ihdr.width) * ihdr.height;
+  check(
+      spng_decode_image(ctx.get(), nullptr, 0, format, SPNG_DECODE_TRNS | SPNG_DECODE_PROGRESSIVE),
+      "PNG data");
+  const size_t width = ihdr.width, row_bytes = width * 4 * (deep ? 2 : 1);
+  std::vector<uint8_t> row(row_bytes);
+  Image image;
+  image.width = int(ihdr.width);
+  image.height = int(ihdr.height);
+  image.channels = channels;
+  image.pixels.reserve(width * ihdr.height * size_t(channels));
   // RGBA -> the kept channels: grey takes R, grey + alpha R and A.
   const int pick[4][4] = {{0}, {0, 3}, {0, 1, 2}, {0, 1, 2, 3}};
-  for (size_t p = 0; p < n; ++p) {
-    for (int c = 0; c < channels; ++c) {
-      const int k = pick[channels - 1][c];
-      uint8_t value;
-      if (deep) {
-        uint16_t v;
-        std::memcpy(&v, rgba.data() + (4 * p + size_t(k)) * 2, 2);
-        value = depth == Depth::kNonZero && c == 0 ? uint8_t(v ? 255 : 0)
-                                                   : uint8_t((uint32_t(v) * 255 + 32767) / 65535);
-      } else {
-        value = rgba[4 * p + size_t(k)];
-        if (depth == Depth::kNonZero && c == 0) value = value ? 255 : 0;
+  for (uint32_t y = 0; y < ihdr.height; ++y) {
+    const int error = spng_decode_row(ctx.get(), row.data(), row_bytes);
+    if (error != 0 && !(error == SPNG_EOI && y + 1 == ihdr.height)) check(error, "PNG data");
+    for (size_t p = 0; p < width; ++p) {
+      for (int c = 0; c < channels; ++c) {
+        const int k = pick[channels - 1][c];
+        uint8_t value;
+        if (deep) {
+          uint16_t v;
+          std::memcpy(&v, row.data() + (4 * p + size_t(k)) * 2, 2);
+          value = depth == Depth::kNonZero && c == 0 ? uint8_t(v ? 255 : 0)
+                                                     : uint8_t((uint32_t(v) * 255 + 32767) / 65535);
+        } else {
+          value = row[4 * p + size_t(k)];
+          if (depth == Depth::kNonZero && c == 0) value = value ? 255 : 0;
+        }
+        image.pixels.push_back(value);
       }
-      image.pixels[p * size_t(channels) + size_t(c)] = value;
     }
   }
+  // The chunks after the last row, through IEND, so the image data's own checksum is read too
+  // (a damaged byte can still inflate, to made-up pixels).
+  check(spng_decode_chunks(ctx.get()), "PNG data");
   return image;
 }
 
