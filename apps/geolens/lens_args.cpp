@@ -66,26 +66,11 @@ void add_lens_options(CLI::App& c, LensArgs& a) {
       ->capture_default_str();
 }
 
-namespace {
-
-// `option` as the CLI names it: "mesh_tolerance" -> "--mesh-tolerance".
-std::string flag(const std::string& option) {
+std::string option_flag(const std::string& option) {
   std::string text = "--" + option;
   std::replace(text.begin(), text.end(), '_', '-');
   return text;
 }
-
-// What `work` returns, an InvalidOption it throws said as the CLI says it: "--mesh-tolerance: ...".
-template <class Work>
-auto naming_options(Work work) {
-  try {
-    return work();
-  } catch (const InvalidOption& e) {
-    throw InvalidInput(flag(e.option) + ": " + e.problem);
-  }
-}
-
-}  // namespace
 
 LensOptions parse_options(const LensArgs& a) {
   LensOptions options;
@@ -150,7 +135,7 @@ std::pair<int, int> parse_size(const std::string& text) {
 
 void warn_about_unread_options(const LensOptions& options, const std::vector<Lens>& lenses) {
   for (const UnreadOption& o : unread_options(options, lenses))
-    std::cerr << "geolens: warning: " << flag(o.name) << " is ignored: " << o.reason
+    std::cerr << "geolens: warning: " << option_flag(o.name) << " is ignored: " << o.reason
               << "; it is left out of the stats\n";
 }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "geolens/core/errors.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_spec.h"
@@ -26,6 +27,20 @@ struct LensArgs {
 /// --subdivide, --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor,
 /// --tolerance, --max-iterations and --threads on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
+
+/// `option` as the CLI names it: "mesh_tolerance" -> "--mesh-tolerance".
+std::string option_flag(const std::string& option);
+
+/// What `work` returns; an InvalidOption it throws (core/errors.h) is rethrown as InvalidInput
+/// in the CLI's words, `context` after it: "--mesh-tolerance: must be ...".
+template <class Work>
+auto naming_options(Work work, const std::string& context = "") {
+  try {
+    return work();
+  } catch (const InvalidOption& e) {
+    throw InvalidInput(option_flag(e.option) + ": " + e.problem + context);
+  }
+}
 
 /// The solver options; throws InvalidInput for an unknown name or a value out of range.
 LensOptions parse_options(const LensArgs& args);

@@ -159,8 +159,12 @@ int run_map(const MapArgs& a) {
     text = point_csv_text(mapped.table);
     losses = mapped.losses;
   } else {
-    MappedFeatures mapped =
-        map_features(std::get<VectorData>(data), map, MapOptions{direction, a.max_segment});
+    MappedFeatures mapped = cli::naming_options(
+        [&] {
+          return map_features(std::get<VectorData>(data), map,
+                              MapOptions{direction, a.max_segment});
+        },
+        " (mapping '" + a.input + "')");
     text = geojson_text(mapped.data);
     losses = mapped.losses;
   }

@@ -136,19 +136,21 @@ SourceFile open_svg(const std::string& path, const SourceFileOptions& options) {
   if (width == 0 || height == 0) {
     if (svg_width <= 0)
       fail(path, "it has no width, height or viewBox: give its size with --size WxH");
+    // Sized in doubles and checked before rounding: an SVG 1e30 px wide overflowed an int.
+    double w = width, h = height;
     if (width == 0 && height == 0) {
-      width = int(std::lround(svg_width));
-      height = int(std::lround(svg_height));
+      w = svg_width;
+      h = svg_height;
     } else if (width == 0) {
-      width = int(std::lround(height * svg_width / svg_height));
+      w = height * svg_width / svg_height;
     } else {
-      height = int(std::lround(width * svg_height / svg_width));
+      h = width * svg_height / svg_width;
     }
-    width = std::max(width, 1);
-    height = std::max(height, 1);
-    if (width > kMaxFrame || height > kMaxFrame)
-      fail(path, "its size " + std::to_string(width) + " x " + std::to_string(height) +
+    if (!(w <= kMaxFrame + 0.5 && h <= kMaxFrame + 0.5))
+      fail(path, "its size " + number_text(w) + " x " + number_text(h) +
                      " px is over 16384: give a smaller --size");
+    width = std::max(int(std::lround(w)), 1);
+    height = std::max(int(std::lround(h)), 1);
   }
   // What the document is drawn into: its intrinsic size, or the frame if it has none.
   const double view_width = svg_width > 0 ? svg_width : width;

@@ -10,7 +10,7 @@ namespace geolens {
 
 Eigen::MatrixX2d densify(const Eigen::MatrixX2d& path, double max_segment) {
   require(max_segment > 0, "densify",
-          "max_segment must be > 0 pixels, got " + std::to_string(max_segment));
+          "max_segment must be > 0 pixels, got " + number_text(max_segment));
   for (Eigen::Index i = 0; i < path.rows(); ++i)
     require(path.row(i).allFinite(), "densify", "path row " + std::to_string(i) + " is not finite");
   // Parts per segment first, so the result is allocated once and its size checked before.
@@ -18,11 +18,11 @@ Eigen::MatrixX2d densify(const Eigen::MatrixX2d& path, double max_segment) {
   Eigen::Index rows = path.rows();
   for (Eigen::Index i = 0; i + 1 < path.rows(); ++i) {
     const double n = std::ceil((path.row(i + 1) - path.row(i)).norm() / max_segment);
-    require(n < double(kMaxDensifiedRows) && rows + Eigen::Index(n) <= kMaxDensifiedRows + 1,
-            "densify",
-            "segment " + std::to_string(i) + " would need more than " +
-                std::to_string(kMaxDensifiedRows) + " vertices in all at max_segment " +
-                std::to_string(max_segment) + " pixels");
+    require_option(n < double(kMaxDensifiedRows) && rows + Eigen::Index(n) <= kMaxDensifiedRows + 1,
+                   "densify", "max_segment",
+                   number_text(max_segment) + " px makes more than " +
+                       std::to_string(kMaxDensifiedRows) + " vertices (at segment " +
+                       std::to_string(i) + "): take a larger one");
     parts[size_t(i)] = std::max<Eigen::Index>(Eigen::Index(n), 1);
     rows += parts[size_t(i)] - 1;
   }

@@ -1,5 +1,7 @@
 #include "geolens/warp/map_features.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,10 +20,28 @@ std::optional<Eigen::Vector2d> map_point(const WarpMap& map, MapDirection direct
   return direction == MapDirection::kForward ? map.forward(p) : map.inverse(p);
 }
 
+// Appends `piece` to `pieces` as a #P x 2 path if it has at least 2 vertices, and empties it.
+void end_piece(std::vector<Eigen::Vector2d>& piece, std::vector<Eigen::MatrixX2d>& pieces) {
+  if (piece.size() >= 2) {
+    Eigen::MatrixX2d P(Eigen::Index(piece.size()), 2);
+    for (size_t k = 0; k < piece.size(); ++k) P.row(Eigen::Index(k)) = piece[k].transpose();
+    pieces.push_back(std::move(P));
+  }
+  piece.clear();
+}
+
 // Maps the parts of geometries one way through a WarpMap and counts what it leaves out.
 class Mapper {
  public:
-  Mapper(const WarpMap& map, const MapOptions& options) : map_(map), options_(options) {}
+  Mapper(const WarpMap& map, const MapOptions& options) : map_(map), options_(options) {
+    // The covered area's bounding box, grown by a pixel: nothing beyond it maps.
+    const Eigen::MatrixX2d& side =
+        options.direction == MapDirection::kForward ? map.mesh().source : map.mesh().screen;
+    box_ = Eigen::AlignedBox2d(side.colwise().minCoeff().transpose(),
+                               side.colwise().maxCoeff().transpose());
+    box_.min().array() -= 1;
+    box_.max().array() += 1;
+  }
 
   // The geometry mapped, or empty when nothing of it is left.
   std::optional<Geometry> geometry(const Geometry& g) {
@@ -36,8 +56,11 @@ class Mapper {
       case GeometryType::kLineString:
       case GeometryType::kMultiLineString:
         for (const Eigen::MatrixX2d& line : g.paths) {
-          for (Eigen::MatrixX2d& piece : cut(densify(line, options_.max_segment)))
-            out.paths.push_back(std::move(piece));
+          bool lost = false;
+          for (const Eigen::MatrixX2d& part : clipped(line, lost))
+            for (Eigen::MatrixX2d& piece : cut(densified(part), lost))
+              out.paths.push_back(std::move(piece));
+          lost_.lines += lost;
         }
         if (out.paths.empty()) return std::nullopt;
         if (out.paths.size() > 1) out.type = GeometryType::kMultiLineString;
@@ -101,22 +124,67 @@ class Mapper {
     return image;
   }
 
+  // `path` densified, its rows counted against kMaxDensifiedRows for all the features.
+  Eigen::MatrixX2d densified(const Eigen::MatrixX2d& path) {
+    Eigen::MatrixX2d out = densify(path, options_.max_segment);
+    rows_ += out.rows();
+    require_option(rows_ <= kMaxDensifiedRows, "map_features", "max_segment",
+                   number_text(options_.max_segment) + " px makes more than " +
+                       std::to_string(kMaxDensifiedRows) +
+                       " vertices of the lines and rings in all: take a larger one");
+    return out;
+  }
+
+  // The parts of `line` within box_, its vertices there kept exactly, a part's first and last
+  // vertex on the box's edge where the line crosses it; `lost` set if anything was left out.
+  // What lies beyond is cut anyway; a vertex at x = 1e300 made densify and the border search
+  // work on the whole segment (refused: more than 2^24 vertices).
+  std::vector<Eigen::MatrixX2d> clipped(const Eigen::MatrixX2d& line, bool& lost) const {
+    std::vector<Eigen::MatrixX2d> parts;
+    std::vector<Eigen::Vector2d> part;
+    auto close = [&] { end_piece(part, parts); };
+    for (Eigen::Index i = 0; i + 1 < line.rows(); ++i) {
+      const Eigen::Vector2d a = line.row(i).transpose(), b = line.row(i + 1).transpose();
+      // Liang-Barsky: the parameters [t0, t1] of a + t (b - a) inside the box.
+      double t0 = 0, t1 = 1;
+      const Eigen::Vector2d d = b - a;
+      bool inside = true;
+      for (int axis = 0; axis < 2 && inside; ++axis) {
+        const double low = box_.min()[axis] - a[axis], high = box_.max()[axis] - a[axis];
+        if (d[axis] == 0) {
+          inside = low <= 0 && high >= 0;
+          continue;
+        }
+        const double ta = low / d[axis], tb = high / d[axis];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+        inside = t0 <= t1;
+      }
+      if (!inside) {
+        lost = true;
+        close();
+        continue;
+      }
+      if (part.empty() || t0 > 0) {
+        close();
+        part.push_back(t0 > 0 ? Eigen::Vector2d(a + t0 * d) : a);
+      }
+      part.push_back(t1 < 1 ? Eigen::Vector2d(a + t1 * d) : b);
+      if (t0 > 0 || t1 < 1) lost = true;
+      if (t1 < 1) close();
+    }
+    close();
+    return parts;
+  }
+
   // The pieces of the (densified) line inside the covered area, mapped, each ending on the
-  // area's border where the line leaves it; pieces of fewer than 2 vertices left out. Counts
-  // the line as lost if any vertex is outside.
-  std::vector<Eigen::MatrixX2d> cut(const Eigen::MatrixX2d& line) {
+  // area's border where the line leaves it; pieces of fewer than 2 vertices left out. Sets
+  // `lost` if any vertex is outside.
+  std::vector<Eigen::MatrixX2d> cut(const Eigen::MatrixX2d& line, bool& lost) {
     std::vector<Eigen::MatrixX2d> pieces;
     std::vector<Eigen::Vector2d> piece;
-    auto close = [&] {
-      if (piece.size() >= 2) {
-        Eigen::MatrixX2d P(Eigen::Index(piece.size()), 2);
-        for (size_t k = 0; k < piece.size(); ++k) P.row(Eigen::Index(k)) = piece[k].transpose();
-        pieces.push_back(std::move(P));
-      }
-      piece.clear();
-    };
+    auto close = [&] { end_piece(piece, pieces); };
     std::optional<Eigen::Vector2d> previous;
-    bool lost = false;
     for (Eigen::Index i = 0; i < line.rows(); ++i) {
       const Eigen::Vector2d p = line.row(i).transpose();
       const std::optional<Eigen::Vector2d> q = at(p);
@@ -134,7 +202,6 @@ class Mapper {
       lost = lost || !q;
     }
     close();
-    lost_.lines += lost;
     return pieces;
   }
 
@@ -144,7 +211,7 @@ class Mapper {
                Geometry& out) {
     std::vector<Eigen::MatrixX2d> rings;
     for (size_t k = first; k < first + count; ++k) {
-      const Eigen::MatrixX2d ring = densify(paths[k], options_.max_segment);
+      const Eigen::MatrixX2d ring = densified(paths[k]);
       Eigen::MatrixX2d mapped(ring.rows(), 2);
       for (Eigen::Index i = 0; i < ring.rows(); ++i) {
         const std::optional<Eigen::Vector2d> q = at(ring.row(i).transpose());
@@ -162,6 +229,8 @@ class Mapper {
 
   const WarpMap& map_;
   MapOptions options_;
+  Eigen::AlignedBox2d box_;
+  Eigen::Index rows_ = 0;  // densified so far
   MapLosses lost_;
 };
 

@@ -64,10 +64,6 @@ FILE_SIZE_LIMIT = 256 << 20
 # entry once the program is fixed (the battery fails while a listed case passes).
 KNOWN_DEFECTS = {
     "lens_200_circles": "quadratic in the lens count: 50 circles 2 s, 100 7 s, 200 31 s",
-    "svg_size_1e30": "an SVG 1e30 px wide is framed at 1 x 1 and the lens refused as outside it",
-    "map_line_to_1e300": "a line reaching x = 1e300 is refused by densify, not cut at the border",
-    "map_line_densified_to_15m_vertices": "15 M vertices under the 2^24 bound: 1.9 GB, then "
-                                          "'terminate called ... std::bad_alloc' (SIGABRT)",
     "obj_face_index_20_digits": "a face naming vertex 99999999999999999999 is accepted",
     "obj_nan_vertex": "a vertex 'v nan 0 0' is accepted (1e308 is refused, NaN is not)",
     "ply_ascii_claims_10_9": "'geolens: failed: std::bad_alloc', exit 1: the count is not checked",

@@ -210,6 +210,44 @@ TEST(MapFeatures, OutsideTheImageIsDroppedOrCutAsDocumented) {
             "{\"type\":\"GeometryCollection\",\"geometries\":[]}\n");
 }
 
+// A line to a point far outside (x = 1e300) is cut where it leaves the image, as the same line to
+// a point just outside is, and counted lost once; the vertices make no work beyond the image.
+TEST(MapFeatures, ALineFarBeyondTheImageIsCutAtItsBorder) {
+  const WarpMap map(lens().warp);
+  auto mapped = [&](double x) {
+    VectorData data;
+    data.features = {
+        feature(make_geometry(GeometryType::kLineString, {path({{100, 50}, {300, 60}, {x, 70}})}))};
+    return map_features(data, map, {MapDirection::kForward, 0.5});
+  };
+  const MappedFeatures far = mapped(1e300), near = mapped(2000);
+  EXPECT_EQ(far.losses.lines, 1);
+  ASSERT_TRUE(far.data.features[0].geometry.has_value());
+  const Eigen::MatrixX2d& cut = far.data.features[0].geometry->paths[0];
+  EXPECT_NEAR(cut(cut.rows() - 1, 0), kWidth, 1e-6);  // ends on the right side
+  EXPECT_NEAR(cut(0, 0), 100, 1e-9);
+  EXPECT_NEAR(cut(0, 1), 50, 1e-9);
+  // Up to where it leaves, the line to 1e300 is the segment to (300, 60) then a line of slope
+  // 1e-298: nearly horizontal, as densified as the near one over the image's width.
+  EXPECT_NEAR(cut(cut.rows() - 1, 1), 60, 1e-6);
+  EXPECT_LT(cut.rows(), 2 * near.data.features[0].geometry->paths[0].rows());
+}
+
+// The lines' vertices in all are bounded, the option named: 15 million took 1.9 GB.
+TEST(MapFeatures, TooManyDensifiedVerticesAreRefusedNamingMaxSegment) {
+  VectorData data;
+  for (int k = 0; k < 50; ++k)
+    data.features.push_back(feature(
+        make_geometry(GeometryType::kLineString, {path({{10, 10.0 + k}, {1010, 10.0 + k}})})));
+  try {
+    map_features(data, WarpMap(lens().warp), {MapDirection::kForward, 0.01});  // 5 million
+    ADD_FAILURE();
+  } catch (const InvalidOption& e) {
+    EXPECT_EQ(e.option, "max_segment");
+    EXPECT_NE(e.problem.find("more than 4194304 vertices"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MapFeatures, IdsAndPropertiesPassThrough) {
   const VectorData data = parse_geojson(
       R"({"type":"FeatureCollection","features":[{"type":"Feature","id":"r1","geometry":)"
