@@ -658,11 +658,17 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
     while (root[k] != k) k = root[k] = root[root[k]];
     return k;
   };
-  auto magnified = [&](size_t k) { return std::exp(log_zooms[k]) * lenses[k].region.reach(); };
+  // Each lens's peak and magnified reach once: the pairs are n^2 (200 lenses, searched for their
+  // fits, spent most of their time here).
+  std::vector<Eigen::Vector2d> peak(n);
+  std::vector<double> magnified(n);
+  for (size_t k = 0; k < n; ++k) {
+    peak[k] = lenses[k].region.peak();
+    magnified[k] = std::exp(log_zooms[k]) * lenses[k].region.reach();
+  }
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
-      if ((lenses[i].region.peak() - lenses[j].region.peak()).norm() < magnified(i) + magnified(j))
-        root[find(i)] = find(j);
+      if ((peak[i] - peak[j]).norm() < magnified[i] + magnified[j]) root[find(i)] = find(j);
   std::vector<FocusGroup> groups;
   std::vector<int> index(n, -1);
   for (size_t k = 0; k < n; ++k) {
@@ -763,10 +769,15 @@ double rim_distortion_bound(double zoom, double ratio) {
 }
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
-                                  double width, double height, std::vector<std::string>* reasons) {
+                                  double width, double height, std::vector<std::string>* reasons,
+                                  const std::vector<size_t>* only) {
   std::vector<double> fits(lenses.size());
   if (reasons) reasons->assign(lenses.size(), "");
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
+    if (only && std::none_of(group.lenses.begin(), group.lenses.end(), [&](size_t k) {
+          return std::find(only->begin(), only->end(), k) != only->end();
+        }))
+      continue;
     const Ring ring(group, lenses, cell, band, width, height);
     const Ring::Room room = ring.min_ratio(group.log_zoom);
     for (size_t k : group.lenses)

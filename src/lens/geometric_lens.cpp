@@ -284,10 +284,11 @@ std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
                                          std::vector<std::string>& reasons) const {
   // The fits of lenses at their zooms, on the box and mesh cell they would be solved on; the
   // footprint of a lens that has no ratio of its own follows its zoom (footprint_ratio).
-  auto fits_of = [&](const std::vector<Lens>& at, std::vector<std::string>* why) {
+  auto fits_of = [&](const std::vector<Lens>& at, std::vector<std::string>* why,
+                     const std::vector<size_t>* only = nullptr) {
     const Eigen::AlignedBox2d box = solved_box(at);
     const double cell = cell_size(box, options_.mesh);
-    return fitting_zooms(at, cell, focus_band(at, cell), width_, height_, why);
+    return fitting_zooms(at, cell, focus_band(at, cell), width_, height_, why, only);
   };
   std::vector<Lens> out = lenses;
   for (int round = 0; round < kFitRounds; ++round) {
@@ -311,7 +312,9 @@ std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
       for (int i = 0; i < kFitHalvings; ++i) {
         const double mid = 0.5 * (lo + hi);
         scale(mid);
-        (mid < group.log_zoom && members_fit(trial, fits_of(trial, nullptr)) ? lo : hi) = mid;
+        (mid < group.log_zoom && members_fit(trial, fits_of(trial, nullptr, &group.lenses)) ? lo
+                                                                                            : hi) =
+            mid;
       }
       scale(lo);
       for (size_t k : group.lenses) out[k].zoom = trial[k].zoom;

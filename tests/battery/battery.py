@@ -63,7 +63,6 @@ FILE_SIZE_LIMIT = 256 << 20
 # Cases that fail because of a defect of the program, not of the case: what it does. Remove an
 # entry once the program is fixed (the battery fails while a listed case passes).
 KNOWN_DEFECTS = {
-    "lens_200_circles": "quadratic in the lens count: 50 circles 2 s, 100 7 s, 200 31 s",
     "obj_face_index_20_digits": "a face naming vertex 99999999999999999999 is accepted",
     "obj_nan_vertex": "a vertex 'v nan 0 0' is accepted (1e308 is refused, NaN is not)",
     "ply_ascii_claims_10_9": "'geolens: failed: std::bad_alloc', exit 1: the count is not checked",

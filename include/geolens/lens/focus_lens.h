@@ -113,9 +113,12 @@ bool footprint_clear_of_border(const FocusGroup& group, double width, double hei
 /// GeometricLens solves each lens at
 /// the largest zoom up to the one asked at which this holds with the lens's own footprint at
 /// that zoom (a lens asking for more gets no less, and one that fits gets exactly its zoom).
+/// With `only`, the fits of the groups holding those lenses alone (the others' are 0): a search
+/// for one group's zoom among 200 lenses evaluated every group's ring at each step.
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
                                   double width, double height,
-                                  std::vector<std::string>* reasons = nullptr);
+                                  std::vector<std::string>* reasons = nullptr,
+                                  const std::vector<size_t>* only = nullptr);
 
 /// What the focus lens asks of the flattening at the vertices `V` (#V x 2, pixels) of a mesh of
 /// cell side `cell` (pixels) on a width x height image, lens i with log zoom `log_zooms[i]`
