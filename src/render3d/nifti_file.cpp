@@ -20,6 +20,8 @@ namespace {
 
 using detail::VoxelType;
 
+constexpr const char* kReadTypes = "(uint8, int8, int16, uint16, int32, uint32, float32, float64)";
+
 bool voxel_type_of(int datatype, VoxelType& type) {
   switch (datatype) {
     case DT_INT8:
@@ -77,6 +79,17 @@ std::string header_problem(const std::string& path) {
     if (dim[k] <= 0)
       return "a volume of zero size (dim[" + std::to_string(k) + "] = " + std::to_string(dim[k]) +
              ")";
+  // A voxel type geolens does not read is refused here, before libnifti prints its own "** ERROR"
+  // line for one it does not know either.
+  int16_t datatype;
+  std::memcpy(&datatype, header + 70, 2);
+  if (swapped) datatype = int16_t(__builtin_bswap16(uint16_t(datatype)));
+  VoxelType type;
+  if (!voxel_type_of(datatype, type)) {
+    const std::string name = nifti_datatype_string(datatype);  // "**ILLEGAL**" if unknown
+    return "voxel type " + (name[0] == '*' ? std::to_string(datatype) : name) + " is not read " +
+           kReadTypes;
+  }
   // libnifti keeps the offset in an int and reads from byte 348 when it does not fit, so a
   // vox_offset of 3e9 read the wrong bytes instead of being refused.
   uint32_t offset_bits;
@@ -134,8 +147,8 @@ ScalarVolume load_nifti(const std::string& path) {
               " read (2^28)");
   VoxelType type = VoxelType::uint8;
   require(voxel_type_of(image->datatype, type), f,
-          where + "voxel type " + nifti_datatype_string(image->datatype) +
-              " is not read (uint8, int8, int16, uint16, int32, uint32, float32, float64)");
+          where + "voxel type " + nifti_datatype_string(image->datatype) + " is not read " +
+              kReadTypes);
   const size_t count = size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz);
   const size_t bytes = size_t(image->nvox) * size_t(image->nbyper);
   const std::string claim =

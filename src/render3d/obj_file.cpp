@@ -2,6 +2,12 @@
 
 #include <tiny_obj_loader.h>
 
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "geolens/core/errors.h"
@@ -17,11 +23,42 @@ std::string first_line(const std::string& text) {
   return end == std::string::npos ? text : text.substr(0, end);
 }
 
+// Refuses what tinyobjloader reads without a word: a vertex coordinate that is not a finite
+// number ("v nan 0 0" was accepted) and a face index beyond int's range (one of 20 digits was
+// read as some other vertex).
+void check_numbers(const std::string& text, const std::string& path) {
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    std::istringstream words(line);
+    std::string kind, word;
+    words >> kind;
+    if (kind != "v" && kind != "f") continue;
+    const std::string at = "'" + path + "': line " + std::to_string(number) + ": ";
+    for (int k = 0; words >> word; ++k) {
+      if (kind == "v") {
+        double value = 0;
+        const auto [end, status] = std::from_chars(word.data(), word.data() + word.size(), value);
+        require(k >= 3 || (status == std::errc() && std::isfinite(value)), "load_obj",
+                at + "vertex coordinate '" + quoted_line(word) + "' is not a finite number");
+      } else {
+        const std::string index = word.substr(0, word.find('/'));
+        long long value = 0;
+        const auto [end, status] =
+            std::from_chars(index.data(), index.data() + index.size(), value);
+        require(status == std::errc() && std::llabs(value) <= std::numeric_limits<int>::max(),
+                "load_obj", at + "face index '" + quoted_line(index) + "' is out of range");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh load_obj(const std::string& path) {
   const char* f = "load_obj";
   const std::string text = read_file(path, f, "OBJ");
+  check_numbers(text, path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

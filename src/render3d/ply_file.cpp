@@ -175,18 +175,22 @@ TriangleMesh load_ply(const std::string& path) {
     }
   }
   require(have_format, f, where + "the header has no format line");
-  // A binary row takes bytes of the body (a scalar's size, a list's length), so counts the body
-  // cannot hold are refused before any row is read or any array sized by them (a 271-byte file
-  // with an element of 10^18 rows and no properties hung; an ASCII row takes a line of its own).
+  // A row takes bytes of the body (binary: a scalar's size, a list's length; ASCII: a character
+  // and a separator a value, a line at least), so counts the body cannot hold are refused before
+  // any row is read or any array sized by them (a 271-byte file with an element of 10^18 rows
+  // and no properties hung; an ASCII one claiming 10^9 vertices ran out of memory).
   const size_t data_bytes = text.size() > at ? text.size() - at : 0;
   for (const Element& e : elements) {
-    if (format == Format::ascii) break;
-    require(!e.properties.empty() || e.count == 0, f,
-            where + "element '" + e.name + "' has " + std::to_string(e.count) +
-                " rows but no properties");
     size_t row_bytes = 0;
-    for (const Property& property : e.properties)
-      row_bytes += size_t(detail::voxel_bytes(property.count_type.value_or(*property.type)));
+    if (format == Format::ascii) {
+      row_bytes = std::max<size_t>(1, 2 * e.properties.size());
+    } else {
+      require(!e.properties.empty() || e.count == 0, f,
+              where + "element '" + e.name + "' has " + std::to_string(e.count) +
+                  " rows but no properties");
+      for (const Property& property : e.properties)
+        row_bytes += size_t(detail::voxel_bytes(property.count_type.value_or(*property.type)));
+    }
     require(e.count == 0 || size_t(e.count) <= data_bytes / row_bytes, f,
             where + "element '" + e.name + "' claims " + std::to_string(e.count) +
                 " rows, more than its " + std::to_string(data_bytes) + " bytes of data hold");

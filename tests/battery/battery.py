@@ -62,12 +62,7 @@ FILE_SIZE_LIMIT = 256 << 20
 
 # Cases that fail because of a defect of the program, not of the case: what it does. Remove an
 # entry once the program is fixed (the battery fails while a listed case passes).
-KNOWN_DEFECTS = {
-    "obj_face_index_20_digits": "a face naming vertex 99999999999999999999 is accepted",
-    "obj_nan_vertex": "a vertex 'v nan 0 0' is accepted (1e308 is refused, NaN is not)",
-    "ply_ascii_claims_10_9": "'geolens: failed: std::bad_alloc', exit 1: the count is not checked",
-    "nifti_unknown_datatype": "libnifti's own '** ERROR: ...' line on stderr before geolens's",
-}
+KNOWN_DEFECTS = {}  # none left (31 when the battery came in)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -391,12 +391,20 @@ TEST_F(MeshSourceTest, RefusesBadMeshFilesWithOneLineNamingTheFile) {
   };
   expect(open("empty.obj", "# nothing\nv 0 0 0\nv 1 0 0\n"), "empty.obj", "no triangle");
   expect(open("missing.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"), "missing.obj", "vertex 7");
+  expect(open("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "nan.obj",
+         "line 2: vertex coordinate 'nan' is not a finite number");
+  expect(open("long.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"), "long.obj",
+         "line 4: face index '99999999999999999999' is out of range");
   expect(open("empty.ply", ply_header("ascii", 0, 0)), "empty.ply", "no triangle");
   expect(open("notply.ply", "plx\n"), "notply.ply", "not a PLY file");
   expect(open("format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"), "format.ply",
          "header line 2");
+  // An ASCII count the file's bytes cannot hold (a character and a separator a value) is
+  // refused from the header; one they could, when the lines run out.
   expect(open("short.ply", ply_header("ascii", 8, 6) + "0 0 0 1\n1 1 1 1\n"), "short.ply",
-         "vertex 2 of 8: the file ends");
+         "element 'vertex' claims 8 rows, more than its 16 bytes of data hold");
+  expect(open("ends.ply", ply_header("ascii", 3, 0) + "0 0 0 1\n1 1 1 1\n" + std::string(9, ' ')),
+         "ends.ply", "vertex 2 of 3: the file ends");
   std::string truncated = cube_ply_binary();
   truncated.resize(truncated.size() - 10);
   expect(open("truncated.ply", truncated), "truncated.ply", "face 5 of 6: the file ends");
@@ -404,8 +412,8 @@ TEST_F(MeshSourceTest, RefusesBadMeshFilesWithOneLineNamingTheFile) {
          "twocorners.ply", "face 0 of 1: has 2 corners");
   expect(open("index.ply", ply_header("ascii", 3, 1) + "0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 9\n"),
          "index.ply", "names vertex 9");
-  expect(open("letters.ply", ply_header("ascii", 3, 1) + "0 0 zero 1\n"), "letters.ply",
-         "vertex 0 of 3: has too few values or one that is not a number");
+  expect(open("letters.ply", ply_header("ascii", 3, 1) + "0 0 zero 1\n1 1 1 1\n0 1 0 1\n3 0 1 2\n"),
+         "letters.ply", "vertex 0 of 3: has too few values or one that is not a number");
   write(path("cube.obj"), cube_obj());
   geolens::SourceFileOptions bad_view;
   bad_view.view = "30";
