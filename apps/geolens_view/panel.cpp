@@ -226,7 +226,9 @@ void draw_overlays(Viewer& viewer) {
     const ImVec2 top(w, 0), bottom(w, ImGui::GetIO().DisplaySize.y);
     list.AddLine(top, bottom, IM_COL32(20, 20, 22, 255), 3.0f);
     for (int pane = 0; pane < 2; ++pane) {
-      const std::string& name = pane == 0 ? viewer.method() : viewer.split();
+      const std::string state = viewer.pane_state(pane);
+      const std::string name = (pane == 0 ? viewer.method() : viewer.split()) +
+                               (state.empty() ? "" : " (" + state + ")");
       const ImVec2 at(float(pane) * w + w - 8 - ImGui::CalcTextSize(name.c_str()).x, 6);
       list.AddRectFilled(ImVec2(at.x - 4, at.y - 2),
                          ImVec2(at.x + ImGui::CalcTextSize(name.c_str()).x + 4, at.y + 16),

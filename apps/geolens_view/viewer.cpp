@@ -91,15 +91,8 @@ void Viewer::open(Image image, const std::string& path) {
   dragged_.reset();
   drawn_.reset();
   // Until the first answer, the image as it is.
-  auto identity = std::make_shared<Magnification>();
-  identity->warp = identity_warp(image_.width, image_.height);
-  frame_ = SolvedFrame();
-  frame_.result = std::move(identity);
-  ++frame_generation_;
-  measures_ = measure_frame(frame_);
-  split_.frame = frame_;
-  ++split_.generation;
-  split_.measures = measures_;
+  show_identity(0);
+  show_identity(1);
   restart_solver();
   fit_view();
 }
@@ -368,6 +361,31 @@ void Viewer::set_method(const std::string& method) {
   if (method == method_) return;
   method_ = method;
   restart_solver();
+  show_identity(0);  // not the last method's picture under this one's name
+}
+
+void Viewer::show_identity(int pane) {
+  if (!has_image()) return;
+  auto identity = std::make_shared<Magnification>();
+  identity->warp = identity_warp(image_.width, image_.height);
+  SolvedFrame& frame = pane == 0 ? frame_ : split_.frame;
+  frame = SolvedFrame();
+  frame.result = std::move(identity);
+  if (pane == 0) {
+    accepted_request_ = 0;
+    ++frame_generation_;
+    measures_ = measure_frame(frame_);
+  } else {
+    ++split_.generation;
+    split_.measures = measure_frame(split_.frame);
+  }
+}
+
+std::string Viewer::pane_state(int pane) const {
+  if (pane == 1 && split_.failed) return "failed";
+  const bool waiting = pane == 0 ? solver_ && accepted_request_ != submitted_request_
+                                 : split_.solver && split_.frame.request != split_.submitted;
+  return waiting ? "waiting" : "";
 }
 
 void Viewer::set_mesh(int mesh) {
@@ -391,6 +409,7 @@ void Viewer::set_split(const std::string& method) {
   if (method == split_.method) return;
   split_.method = method;
   restart_solver();
+  if (!method.empty()) show_identity(1);  // not the last method's picture under this one's name
 }
 
 void Viewer::restart_solver() {
@@ -398,7 +417,7 @@ void Viewer::restart_solver() {
   solver_.reset();  // cancels the solve under way before the next starts
   solver_ = std::make_unique<LensSolver>(image_.width, image_.height, method_, options_);
   split_.solver.reset();
-  split_.frame.request = 0;  // the new solver numbers its requests from 1
+  split_.frame.request = split_.submitted = 0;  // the new solver numbers its requests from 1
   if (!split_.method.empty())
     split_.solver =
         std::make_unique<LensSolver>(image_.width, image_.height, split_.method, options_);
@@ -563,7 +582,7 @@ bool Viewer::update() {
   if (dirty_) {
     submitted_request_ = solver_->submit(lenses_, drop_stale_);
     requested_at_.emplace_back(submitted_request_, now);
-    if (split_.solver) split_.solver->submit(lenses_, drop_stale_);
+    if (split_.solver) split_.submitted = split_.solver->submit(lenses_, drop_stale_);
     dirty_ = drop_stale_ = false;
     // A draft takes a millisecond or two: shown in this frame, not the next (a move took two
     // frames to show under llvmpipe, 29 ms); a slower solve is shown when it is done.
@@ -571,8 +590,14 @@ bool Viewer::update() {
   }
   if (split_.solver) {
     SolvedFrame f = split_.solver->latest();
-    if (!f.error.empty()) message = f.error;
-    if (f.request != 0 && (f.request != split_.frame.request || f.result != split_.frame.result)) {
+    // A request the split's method refuses (classic lenses whose disks overlap) leaves the image
+    // as it is in its pane, not the picture of the lenses before.
+    const bool failed = !f.error.empty();
+    if (failed) message = f.error;
+    if (failed && !split_.failed) show_identity(1);
+    split_.failed = failed;
+    if (!failed && f.request != 0 &&
+        (f.request != split_.frame.request || f.result != split_.frame.result)) {
       split_.frame = std::move(f);
       ++split_.generation;
       split_.measures = measure_frame(split_.frame);

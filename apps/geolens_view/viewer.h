@@ -171,6 +171,12 @@ class Viewer {
   const SolvedFrame& split_frame() const { return split_.frame; }
   std::uint64_t split_generation() const { return split_.generation; }
   const FrameMeasures& split_measures() const { return split_.measures; }
+  /// What pane 0 (the method) or 1 (the split) shows, for its label: "" (the current lenses),
+  /// "waiting" (a frame of other lenses or options while its solver works on the current ones;
+  /// a pane whose method was just switched shows the image as it is, not the last method's
+  /// picture) or, for the split, "failed" (its method refuses the lenses: the image as it is,
+  /// and `message` says why).
+  std::string pane_state(int pane) const;
 
   // --- the view ---
   /// The window's framebuffer size, pixels; call before the input of each frame.
@@ -227,6 +233,8 @@ class Viewer {
   void replace_region(size_t index, const std::optional<Region>& region, const char* what,
                       const char* done);
   void restart_solver();
+  // Pane 0 (the method) or 1 (the split) shows the image as it is until its solver answers.
+  void show_identity(int pane);
   // The view of pane 0 a detail picture is wanted for now, if any (detail).
   std::optional<DetailView> detail_view() const;
   // Asks for the detail of the frame and view at rest, and takes the worker's latest picture.
@@ -287,6 +295,8 @@ class Viewer {
   struct Split {
     std::string method;  // "" while not split
     std::unique_ptr<LensSolver> solver;
+    std::uint64_t submitted = 0;  // the solver's latest request
+    bool failed = false;          // its latest request was refused
     SolvedFrame frame;
     std::uint64_t generation = 0;
     FrameMeasures measures;

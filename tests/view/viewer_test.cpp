@@ -480,6 +480,36 @@ TEST_F(View, TheSplitViewShowsBothMethodsOnTheSameLenses) {
   EXPECT_LT(mean_difference(right, shot("fisheye.png", lens + " --method fisheye")), 0.5);
 }
 
+// Switching the split's method and adding lenses: once solved, the right half is the named
+// method's picture of the current lenses, never the last method's or the old lenses'; where the
+// method refuses the lenses (classic disks that overlap), the image as it is.
+TEST_F(View, TheSplitShowsTheNamedMethodOfTheCurrentLenses) {
+  const std::string lens = " --lens circle:60,120,16:2", far = " --lens circle:260,120,12:2";
+  std::ofstream(path("switch.txt"))
+      << "set outlines off\nscreenshot " << path("fisheye.png")
+      << "\nframe 2 set split bifocal\nscreenshot " << path("bifocal.png")
+      << "\nframe 4 add circle:260,120,12:2\nscreenshot " << path("added.png")
+      << "\nframe 6 add circle:100,120,12:2\nscreenshot " << path("overlap.png") << "\nquit\n";
+  const ViewRun r =
+      run(path("in.png") + " --size 640x240 --split fisheye --script " + path("switch.txt") + lens);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto right = [&](const std::string& name) {
+    const Image both = load_image(path(name));
+    Image half(kWidth, kHeight, 3);
+    for (int y = 0; y < kHeight; ++y) std::copy_n(both.at(kWidth, y), kWidth * 3, half.at(0, y));
+    return half;
+  };
+  const Image fisheye = shot("f.png", lens + " --method fisheye");
+  const Image bifocal = shot("b.png", lens + " --method bifocal");
+  const Image added = shot("a.png", lens + far + " --method bifocal");
+  EXPECT_GT(mean_difference(fisheye, bifocal, 20, 80, 100, 160), 1.0);  // they differ there
+  EXPECT_GT(mean_difference(bifocal, added, 220, 80, 300, 160), 1.0);
+  EXPECT_LT(mean_difference(right("fisheye.png"), fisheye), 0.5);
+  EXPECT_LT(mean_difference(right("bifocal.png"), bifocal), 0.5);
+  EXPECT_LT(mean_difference(right("added.png"), added), 0.5);
+  EXPECT_LT(mean_difference(right("overlap.png"), source_), 1.0);
+}
+
 TEST_F(View, StatsReportTheStagesTheLibraryTimed) {
   const std::string arguments = path("in.png") + " --size 320x240 --stats --frames 2 " +
                                 "--lens circle:160,120,24:2.5 --screenshot " + path("s.png");
