@@ -70,9 +70,12 @@ int run_magnify(const MagnifyArgs& a) {
     return ms;
   };
   lap();
-  const std::optional<VectorData> overlay =
+  std::optional<VectorData> overlay =
       a.overlay.empty() ? std::nullopt : std::optional(read_geojson(a.overlay));
   const SourceFile source = cli::open_input(a.input, a.source);
+  // Over a vector map the overlay is in degrees, placed on its frame.
+  if (overlay && source.map_frame)
+    overlay = to_frame_pixels(*overlay, *source.map_frame, a.overlay);
   const int frame_width = source.frame_width, frame_height = source.frame_height;
   const std::vector<Lens> lenses = cli::parse_lenses(a.lens, frame_width, frame_height);
   cli::warn_about_unread_options(options, lenses);

@@ -84,7 +84,10 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
   c->add_option("-o,--output", a.output, "output file (default: standard output), never the input");
   cli::add_lens_options(*c, a.lens);
   c->add_option("--image", a.image,
-                "the source image (or source file) the lenses are placed on (its size)");
+                "the source image (or source file) the lenses are placed on (its size); a vector "
+                "map (.geojson) places the input in longitude and latitude on its frame (and "
+                "--inverse writes them)");
+  c->add_option("--style", a.style, "style file (JSON) of an --image vector map (its frame)");
   c->add_option("--size", a.size,
                 "output size WxH, as magnify's (default: the source's); without --image also "
                 "the source's size");
@@ -115,7 +118,10 @@ int run_map(const MapArgs& a) {
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
   if (a.input != "-") files.add_input("the input", a.input);
+  require(a.style.empty() || !a.image.empty(), "--style",
+          "is the style of an --image vector map: give --image");
   if (!a.image.empty()) files.add_input("the --image", a.image);
+  if (!a.style.empty()) files.add_input("the --style file", a.style);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
     files.add_input("the --lens " + f.kind + " file", f.path);
   if (!to_stdout(a)) files.add_output("--output", a.output);
@@ -128,15 +134,18 @@ int run_map(const MapArgs& a) {
     data = a.input == "-" ? parse_geojson(standard_input(), name) : read_geojson(a.input);
   const LensOptions options = cli::parse_options(a.lens);
   std::pair<int, int> source_size, output_size;
+  std::optional<MapFrame> degrees;  // a vector map's frame: the source side is in degrees
   if (!a.size.empty()) output_size = cli::parse_size(a.size);
   if (!a.image.empty()) {
     // Any source file: its frame is what the lenses are placed on (--size frames one without
     // pixels of its own).
     cli::SourceArgs source_args;
     source_args.size = a.size;
+    source_args.style = a.style;
     const SourceFile image = cli::open_input(a.image, source_args);
     source_size = {image.frame_width, image.frame_height};
     if (a.size.empty()) output_size = source_size;
+    degrees = image.map_frame;
   } else {
     source_size = output_size;
   }
@@ -154,18 +163,23 @@ int run_map(const MapArgs& a) {
   const MapDirection direction = a.inverse ? MapDirection::kInverse : MapDirection::kForward;
   std::string text;
   MapLosses losses;
+  // On a vector map the source side is in degrees: the input placed on its frame (forward), or
+  // the output told in degrees (inverse).
+  const bool from_degrees = degrees && !a.inverse, to_degrees_out = degrees && a.inverse;
   if (const PointTable* table = std::get_if<PointTable>(&data)) {
-    MappedPoints mapped = map_points(*table, map, direction);
-    text = point_csv_text(mapped.table);
+    MappedPoints mapped =
+        map_points(from_degrees ? to_frame_pixels(*table, *degrees, name) : *table, map, direction);
+    text = point_csv_text(to_degrees_out ? to_degrees(mapped.table, *degrees) : mapped.table);
     losses = mapped.losses;
   } else {
+    const VectorData& features = std::get<VectorData>(data);
     MappedFeatures mapped = cli::naming_options(
         [&] {
-          return map_features(std::get<VectorData>(data), map,
-                              MapOptions{direction, a.max_segment});
+          return map_features(from_degrees ? to_frame_pixels(features, *degrees, name) : features,
+                              map, MapOptions{direction, a.max_segment});
         },
         " (mapping '" + a.input + "')");
-    text = geojson_text(mapped.data);
+    text = geojson_text(to_degrees_out ? to_degrees(mapped.data, *degrees) : mapped.data);
     losses = mapped.losses;
   }
   warn_about_losses(losses, "the input", a.inverse ? "the output frame" : "the source image");

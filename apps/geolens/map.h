@@ -16,6 +16,7 @@ struct MapArgs {
   std::string input;     ///< a CSV or GeoJSON file, or "-" for standard input
   std::string output;    ///< the file written; "" (or "-") for standard output
   std::string image;     ///< the source image the lenses are placed on (its size is used)
+  std::string style;     ///< the style file of an --image vector map
   std::string size;      ///< WxH: the output size; without --image also the source's
   std::string format;    ///< csv or geojson; "" = from the input's (or output's) extension
   bool inverse = false;  ///< screen -> source instead of source -> screen

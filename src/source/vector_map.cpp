@@ -16,6 +16,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
+#include "geolens/source/map_frame.h"
 #include "geolens/source/map_labels.h"
 #include "geolens/source/tiled_source.h"
 #include "source/cairo_tile.h"
@@ -27,7 +28,6 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr int kMaxFrame = 16384;
-constexpr double kMaxMercatorLatitude = 85.0511287798066;  // where Web Mercator is square
 constexpr double kPi = 3.14159265358979323846;
 
 struct Box {
@@ -68,19 +68,6 @@ struct MapData {
   double scale;
   double max_reach;  ///< texels a stroke or dot reaches beyond its path: culling margin
 };
-
-/// `value` as a message shows it: 120, 41.5, 1e+300.
-// How far past the valid range a coordinate may be and still be read, clamped, degrees: the
-// rounding of the tools that wrote it (Natural Earth's land has 180.00000000000014 and
-// -90.00000000000003).
-constexpr double kDegreeTolerance = 1e-9;
-
-/// (lon, lat) degrees projected, y north.
-Eigen::Vector2d project(MapProjection projection, double lon, double lat) {
-  if (projection == MapProjection::kPlateCarree) return {lon, lat};
-  const double phi = std::clamp(lat, -kMaxMercatorLatitude, kMaxMercatorLatitude) * kPi / 180;
-  return {lon * kPi / 180, std::log(std::tan(kPi / 4 + phi / 2))};
-}
 
 void add_parts(const Geometry& g, std::vector<Part>& parts) {
   switch (g.type) {
@@ -226,6 +213,7 @@ struct BuiltMap {
   std::shared_ptr<std::vector<MapLabel>> labels;
   std::shared_ptr<std::vector<MapDot>> dots;
   int width, height;
+  MapFrame frame;
 };
 
 BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int height,
@@ -246,16 +234,9 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
     for (Part& part : map->features[f])
       for (Path& path : part.paths)
         for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
-          double lon = path.points(i, 0), lat = path.points(i, 1);
-          const double t = kDegreeTolerance;
-          require(lon >= -180 - t && lon <= 180 + t && lat >= -90 - t && lat <= 90 + t, function,
-                  "feature " + std::to_string(f) + ": the position (" + number_text(lon) + ", " +
-                      number_text(lat) +
-                      ") is not a longitude in [-180, 180] and a latitude in [-90, 90] (a vector "
-                      "map is in degrees, WGS84)");
-          lon = std::clamp(lon, -180.0, 180.0);
-          lat = std::clamp(lat, -90.0, 90.0);
-          const Eigen::Vector2d p = project(style.projection, lon, lat);
+          const Eigen::Vector2d d = checked_degrees(path.points(i, 0), path.points(i, 1), function,
+                                                    "feature " + std::to_string(f));
+          const Eigen::Vector2d p = project(style.projection, d.x(), d.y());
           path.points.row(i) = p.transpose();
           if (!style.extent) extent.add(p.x(), p.y());
         }
@@ -280,16 +261,19 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
   require(width >= 1 && height >= 1 && width <= kMaxFrame && height <= kMaxFrame, function,
           "the extent's aspect gives a frame of " + std::to_string(width) + " x " +
               std::to_string(height) + " pixels, outside [1, 16384]: give both sides of the size");
-  const double k = std::min(width / dx, height / dy);  // frame pixels per projected unit
-  const double ox = (width - k * dx) / 2, oy = (height - k * dy) / 2;
+  MapFrame frame;
+  frame.projection = style.projection;
+  frame.left = extent.x0;
+  frame.top = extent.y1;
+  frame.scale = std::min(width / dx, height / dy);  // the extent centred, never stretched
+  frame.offset = {(width - frame.scale * dx) / 2, (height - frame.scale * dy) / 2};
 
   map->feature_boxes.resize(map->features.size());
   for (size_t f = 0; f < map->features.size(); ++f)
     for (Part& part : map->features[f])
       for (Path& path : part.paths) {
         for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
-          path.points(i, 0) = ox + (path.points(i, 0) - extent.x0) * k;
-          path.points(i, 1) = oy + (extent.y1 - path.points(i, 1)) * k;
+          path.points.row(i) = frame.from_projected(path.points.row(i).transpose()).transpose();
           path.box.add(path.points(i, 0), path.points(i, 1));
         }
         map->feature_boxes[f].add(path.box.x0, path.box.y0);
@@ -350,7 +334,7 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
   map->background = {channel(style.background.r), channel(style.background.g),
                      channel(style.background.b)};
   map->scale = double(1 << kVectorMapDetail);
-  return {map, labels, dots, width, height};
+  return {map, labels, dots, width, height, frame};
 }
 
 }  // namespace
@@ -361,8 +345,13 @@ std::vector<MapLabel> vector_map_labels(const VectorData& data, const MapStyle& 
 }
 
 SourceFile vector_map_source(const VectorData& data, const MapStyle& style, int width, int height) {
-  const auto [map, labels, dots, frame_width, frame_height] =
-      build_map(data, style, width, height, "vector_map_source");
+  // Named one by one: clang 14 (the fuzz build's, scripts/fuzz.sh) cannot capture the names of a
+  // structured binding.
+  const BuiltMap built = build_map(data, style, width, height, "vector_map_source");
+  const std::shared_ptr<MapData>& map = built.map;
+  const std::shared_ptr<std::vector<MapLabel>>& labels = built.labels;
+  const std::shared_ptr<std::vector<MapDot>>& dots = built.dots;
+  const int frame_width = built.width, frame_height = built.height;
 
   auto source = std::make_shared<TiledSource>(
       int(frame_width * map->scale), int(frame_height * map->scale), 3,
@@ -374,6 +363,7 @@ SourceFile vector_map_source(const VectorData& data, const MapStyle& style, int 
   file.frame_height = frame_height;
   file.scale = map->scale;
   file.kind = "vector map";
+  file.map_frame = built.frame;
   // Each zoom is drawn on its own (labels, line widths): blended only about their midpoint.
   file.level_band = 0.25;
   const size_t feature_count = data.features.size();

@@ -159,6 +159,52 @@ TEST_F(MapCli, RefusesBadInputWithOneLineAndExitTwo) {
   expect_refused("map " + path("in.csv") + size + " -o " + path("nowhere/out.csv"), "nowhere");
 }
 
+// On a vector map (--image a GeoJSON in degrees) the source side is in degrees: points in
+// longitude and latitude go through the lens to screen pixels and --inverse tells them back in
+// degrees; with a lens far away (zoom 1) they land where the map draws them; --style frames it
+// as magnify does; pixels given as degrees and --style without --image are refused.
+TEST_F(MapCli, OnAVectorMapTheSourceSideIsInDegrees) {
+  const std::string europe = std::string(GEOLENS_SOURCE_DIR) + "/examples/europe.geojson";
+  const std::string style = std::string(GEOLENS_SOURCE_DIR) + "/examples/europe_style.json";
+  const std::string image = " --image " + europe + " --style " + style + " --size 800x600";
+  write("cities.csv", "lon,lat,name\n2.35,48.86,paris\n13.4,52.52,berlin\n-3.7,40.42,madrid\n");
+  const CliRun there = run("map " + path("cities.csv") + image + " --lens circle:300,300,50:2 -o " +
+                           path("screen.csv"));
+  ASSERT_EQ(there.code, 0) << there.err;
+  const CliRun back = run("map " + path("screen.csv") + image +
+                          " --lens circle:300,300,50:2 --inverse -o " + path("back.csv"));
+  ASSERT_EQ(back.code, 0) << back.err;
+  const PointTable in = read_point_csv(path("cities.csv")),
+                   screen = read_point_csv(path("screen.csv")),
+                   returned = read_point_csv(path("back.csv"));
+  ASSERT_EQ(returned.points.rows(), 3);
+  EXPECT_LT((returned.points - in.points).rowwise().norm().maxCoeff(), 1e-6);
+  EXPECT_GT((screen.points - in.points).rowwise().norm().minCoeff(), 50);  // pixels, not degrees
+  // At zoom 1 the screen is the frame: Paris where magnify --overlay draws its dot, on the map.
+  const CliRun frame = run("map " + path("cities.csv") + image + " --lens circle:700,100,10:1 -o " +
+                           path("frame.csv"));
+  ASSERT_EQ(frame.code, 0) << frame.err;
+  write("paris.geojson", R"({"type":"Point","coordinates":[2.35,48.86]})");
+  ASSERT_EQ(run("magnify " + europe + " --style " + style + " --size 800x600" +
+                " --lens circle:700,100,10:1 -o " + path("dot.png") + " --overlay " +
+                path("paris.geojson"))
+                .code,
+            0);
+  const Eigen::Vector2d paris = read_point_csv(path("frame.csv")).points.row(0).transpose();
+  const Image dot = load_image(path("dot.png"));
+  const uint8_t* p = dot.at(int(paris.x()), int(paris.y()));
+  const OverlayStyle overlay;
+  EXPECT_TRUE(std::equal(overlay.point_colour.begin(), overlay.point_colour.end(), p))
+      << int(p[0]) << " " << int(p[1]) << " " << int(p[2]) << " at " << paris.transpose();
+  // Pixels are no degrees; a style needs the map.
+  write("pixels.csv", "x,y\n400,300\n");
+  expect_refused("map " + path("pixels.csv") + image + " --lens circle:300,300,50:2",
+                 "point 1: the position (400, 300) is not a longitude");
+  expect_refused("map " + path("cities.csv") + " --size 800x600 --style " + style +
+                     " --lens circle:300,300,50:2",
+                 "--style: is the style of an --image vector map");
+}
+
 TEST_F(MapCli, MagnifyDrawsTheOverlay) {
   const std::string magnify = "magnify " + path("in.png") + kLens;
   ASSERT_EQ(run(magnify + " -o " + path("plain.png")).code, 0);

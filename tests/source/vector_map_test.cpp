@@ -20,6 +20,7 @@
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/render/render.h"
+#include "geolens/source/map_frame.h"
 #include "geolens/source/map_labels.h"
 #include "geolens/source/map_style.h"
 #include "geolens/warp/warp_map.h"
@@ -179,6 +180,53 @@ TEST_F(VectorMapTest, BothSidesGivenTheMapIsCentredNotStretched) {
     EXPECT_TRUE(is(frame.at(x, y), 255, 0, 0)) << x << ", " << y;
   for (auto [x, y] : {std::pair{150, 246}, {150, 354}, {97, 300}, {203, 300}})
     EXPECT_TRUE(is(frame.at(x, y), 0, 0, 255)) << x << ", " << y;
+}
+
+// The map's frame places degrees where the map draws them (the square's corners of the centred
+// 300 x 600 frame above), and tells pixels back in degrees, in both projections.
+TEST_F(VectorMapTest, ItsFramePlacesDegreesWhereItDrawsThemAndBack) {
+  const SourceFile plate =
+      geolens::vector_map_source(geolens::parse_geojson(kSquare, "square"),
+                                 geolens::parse_map_style(kSquareStyle, "style"), 300, 600);
+  ASSERT_TRUE(plate.map_frame.has_value());
+  const geolens::MapFrame& frame = *plate.map_frame;
+  EXPECT_LT((frame.pixels(0, 10) - Eigen::Vector2d(100, 250)).norm(), 1e-9);
+  EXPECT_LT((frame.pixels(10, 0) - Eigen::Vector2d(200, 350)).norm(), 1e-9);
+  const geolens::VectorData europe =
+      geolens::read_geojson(GEOLENS_SOURCE_DIR "/examples/europe.geojson");
+  const SourceFile mercator = geolens::vector_map_source(europe, geolens::default_map_style(), 800);
+  ASSERT_TRUE(mercator.map_frame.has_value());
+  for (const geolens::SourceFile* file : {&plate, &mercator})
+    for (double lon = -30; lon <= 40; lon += 7)
+      for (double lat = -60; lat <= 80; lat += 9) {
+        const Eigen::Vector2d back = file->map_frame->degrees(file->map_frame->pixels(lon, lat));
+        EXPECT_NEAR(back.x(), lon, 1e-9);
+        EXPECT_NEAR(back.y(), lat, 1e-9);
+      }
+  // A labelled place of the map is drawn where its degrees say (Paris: 2.35 E, 48.86 N, the
+  // label anchored at the place's dot).
+  const std::vector<MapLabel> labels =
+      geolens::vector_map_labels(europe, geolens::default_map_style(), 800);
+  size_t checked = 0;
+  for (const geolens::Feature& f : europe.features) {
+    if (!f.geometry || f.geometry->type != geolens::GeometryType::kPoint) continue;
+    const Eigen::Vector2d at =
+        mercator.map_frame->pixels(f.geometry->paths[0](0, 0), f.geometry->paths[0](0, 1));
+    for (const MapLabel& label : labels)
+      if ((label.position - at).norm() < 1e-9) ++checked;
+  }
+  EXPECT_GT(checked, 10u);
+  // Pixels are no degrees: a GeoJSON in pixels placed on the map is refused naming it.
+  const geolens::VectorData pixels =
+      geolens::parse_geojson(R"({"type": "Point", "coordinates": [400, 300]})", "pixels");
+  try {
+    geolens::to_frame_pixels(pixels, frame, "pixels.geojson");
+    ADD_FAILURE();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("'pixels.geojson': feature 0: the position (400, 300)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(VectorMapTest, RendersTheSameOnSeveralThreads) {

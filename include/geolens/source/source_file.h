@@ -5,12 +5,14 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "geolens/io/image.h"
 #include "geolens/render/render.h"
+#include "geolens/source/map_frame.h"
 #include "geolens/source/source.h"
 
 namespace geolens {
@@ -48,6 +50,9 @@ struct SourceFile {
   /// framed at its size (framed_warp_map, warp/warp_map.h): what must stay upright and unwarped,
   /// such as a vector map's labels. May be empty; the output is RGB or RGBA.
   std::function<void(Image& output, const WarpMap& map)> overlay;
+  /// A vector map's: where longitude and latitude lie in the frame (map_frame.h), so data in
+  /// degrees can be placed on it; empty for every other kind.
+  std::optional<MapFrame> map_frame;
 };
 
 /// A plain image as a SourceFile: its mip pyramid, framed at its size, scale 1.
