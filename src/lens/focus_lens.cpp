@@ -1117,10 +1117,33 @@ FlattenResult flatten_focus(Flattener& flattener, const PlanarMesh& mesh,
   return flattener.solve(mesh.V, nullptr, control);
 }
 
+namespace {
+
+// The sharpest corner of a closed outline, degrees: the angle between the two edges at a vertex,
+// a spike's or a notch's alike.
+double sharpest_corner(const std::vector<Eigen::Vector2d>& outline) {
+  double sharpest = 180;
+  const size_t n = outline.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = outline[(i + n - 1) % n] - outline[i];
+    const Eigen::Vector2d b = outline[(i + 1) % n] - outline[i];
+    sharpest = std::min(sharpest, std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b)) *
+                                      180 / std::numbers::pi);
+  }
+  return sharpest;
+}
+
+}  // namespace
+
 bool meshed_along_regions(const std::vector<Lens>& lenses, double cell) {
   return std::all_of(lenses.begin(), lenses.end(), [&](const Lens& lens) {
-    return (lens.region.circle() && lens.region.size() >= 3 * cell) ||
-           (lens.region.outline() && lens.region.size() >= 1 * cell);
+    if (lens.region.circle()) return lens.region.size() >= 3 * cell;
+    // A corner sharper than kSharpestMeshedCorner (a jagged outline's spikes) is not followed:
+    // the mesh made along it had degenerate triangles (random star polygons of 65 to 380
+    // vertices, corners of 0.05 to 3.5 degrees: "Flattener: triangle N is degenerate").
+    const std::optional<std::vector<Eigen::Vector2d>> outline = lens.region.outline();
+    return outline && lens.region.size() >= 1 * cell &&
+           sharpest_corner(*outline) >= kSharpestMeshedCorner;
   });
 }
 

@@ -25,9 +25,14 @@ class ThreadPool;  // core/thread_pool.h: the functions below that take one run 
 /// is half its radius, docs/design.md).
 double footprint_ratio(const Lens& lens);
 
+/// The sharpest corner of a region's outline a mesh is made to follow, degrees.
+constexpr double kSharpestMeshedCorner = 5;
+
 /// Whether the focus lens's grid of cell side `cell` (pixels) follows the lenses: when every lens
-/// is a circle or a polygon spanning at least 3 cells, GeometricLens makes its grid follow every
-/// region's boundary and every footprint's edge (focus_curves), so no triangle crosses them.
+/// is a circle spanning at least 3 cells or an outline (a polygon, a traced mask blob) spanning a
+/// cell with no corner sharper than kSharpestMeshedCorner, GeometricLens makes its grid follow
+/// every region's boundary and every footprint's edge (focus_curves), so no triangle crosses
+/// them; otherwise the focus is blended over a band of cells (focus_band).
 bool meshed_along_regions(const std::vector<Lens>& lenses, double cell);
 
 /// How far outside a region a mesh vertex of cell side `cell` still counts as in its focus,
