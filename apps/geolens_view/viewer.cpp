@@ -158,6 +158,7 @@ void Viewer::show_source(OpenedSource opened, std::optional<std::pair<double, do
   }
   open(std::move(opened.image), opened.path);
   orbits_ = orbits;
+  source_kind_ = opened.kind;
   azimuth_ = camera ? camera->first : 0;
   elevation_ = camera ? camera->second : 0;
   if (opened.detail) detail_worker_ = std::make_unique<DetailWorker>(std::move(opened.detail));
@@ -248,6 +249,15 @@ void Viewer::set_radius(size_t index, double radius) {
 std::string Viewer::lens_arguments() const {
   std::string out =
       "--model " + to_string(options_.model) + " --mesh " + std::to_string(options_.mesh);
+  // A source framed by its options (a vector map, an SVG, a scene, a tile folder or level list)
+  // is framed by magnify the same way only if told the frame and the options: so the lenses,
+  // placed in frame pixels, land on the same places.
+  if (!source_kind_.empty() && source_kind_ != "image") {
+    out += " --size " + std::to_string(image_.width) + "x" + std::to_string(image_.height);
+    if (!source_options.style.empty()) out += " --style " + source_options.style;
+    if (orbits_) out += " --view " + number(azimuth_) + "," + number(elevation_);
+    if (!source_options.transfer.empty()) out += " --transfer " + source_options.transfer;
+  }
   std::string notes;
   std::vector<std::string> files;
   for (size_t i = 0; i < lenses_.size(); ++i) {

@@ -128,7 +128,9 @@ class Viewer {
   std::optional<size_t> selected() const { return selected_; }
   /// Throws InvalidInput naming `what` unless `index` names a lens.
   void check_index(size_t index, const std::string& what) const;
-  /// The lenses as --lens arguments (with --model and --mesh) for the CLI. A mask lens has no
+  /// The lenses as --lens arguments (with --model and --mesh) for the CLI, and for a source that
+  /// is not a plain image its frame (--size) and the options that framed it (--style, --view at
+  /// the camera shown, --transfer), so `geolens magnify` frames it alike. A mask lens has no
   /// text form, and a polygon drawn or changed here has no file until export_lenses writes it:
   /// both are said in a comment.
   std::string lens_arguments() const;
@@ -262,6 +264,7 @@ class Viewer {
   std::uint64_t detail_generation_ = 0;
   std::uint64_t submitted_request_ = 0;  // the solver's latest request
   bool orbits_ = false;                  // the source is a 3D scene (orbit)
+  std::string source_kind_;              // SourceFile::kind of the source shown
   double azimuth_ = 0, elevation_ = 0;   // its camera, degrees
   // The open or orbit asked off the UI thread and not shown yet.
   struct Asked {

@@ -765,6 +765,34 @@ TEST_F(View, AVectorMapShowsItsDetailInTheFocus) {
   EXPECT_LT(mean_difference(on, off, 700, 0, 800, 763), 3.0);
 }
 
+// The lenses exported from a view of a vector map carry its frame and style, so `magnify` with
+// them frames the map as the viewer did (not at its own default width) and shows what the view
+// shows.
+TEST_F(View, AnExportedVectorMapViewIsReproducedByMagnify) {
+  const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
+  std::ofstream(path("export.txt")) << "set outlines off\nscreenshot " << path("view.png")
+                                    << "\nexport " << path("lenses.txt") << "\nquit\n";
+  const ViewRun r = run(examples + "europe.geojson --style " + examples +
+                        "europe_style.json --frame 600x572 --size 600x572 --lens "
+                        "circle:220,245,40:3 --script " +
+                        path("export.txt"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string arguments = read_text(path("lenses.txt"));
+  arguments = arguments.substr(0, arguments.find('\n'));
+  EXPECT_NE(arguments.find("--size 600x572 --style " + examples + "europe_style.json"),
+            std::string::npos)
+      << arguments;
+  ASSERT_EQ(std::system((std::string(GEOLENS_CLI) + " magnify " + examples + "europe.geojson " +
+                         arguments + " -o " + path("magnify.png") + " 2> /dev/null")
+                            .c_str()),
+            0);
+  const Image view = load_image(path("view.png")), magnified = load_image(path("magnify.png"));
+  ASSERT_EQ(magnified.width, 600);
+  ASSERT_EQ(magnified.height, 572);
+  EXPECT_LT(mean_difference(view, magnified, 0, 0, 600, 572), 3.0);
+  EXPECT_LT(mean_difference(view, magnified, 220 - 90, 245 - 90, 220 + 90, 245 + 90), 3.0);
+}
+
 TEST_F(View, ScreenshotAfterFramesWaitsForTheSolver) {
   const ViewRun r = run(path("in.png") + " --size 320x240 --lens circle:160,120,24:2.5 " +
                         "--screenshot " + path("out.png") + " --frames 1");
