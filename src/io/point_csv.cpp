@@ -61,7 +61,9 @@ PointTable parse_point_csv(const std::string& text, const std::string& name) {
     const size_t end = rest.find('\n');
     std::string_view line = rest.substr(0, end);
     rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    // Every carriage return that ends the line: "\r\r\n" left one in a header or a line's rest,
+    // and the text written back, its line ending "\n", read back without it.
+    while (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
     const Fields f = split(line);
     const std::optional<double> x = number(f.x), y = number(f.y);

@@ -11,8 +11,8 @@ namespace geolens {
 /// decimal numbers (pixels; spaces around them allowed), whatever follows them on the line
 /// (",id,...") kept verbatim in PointTable::rest. The first line that is not blank is a header,
 /// kept in PointTable::header, when neither of its first two fields is a number ("x,y",
-/// "x,y,name"). Blank lines are skipped (so the points are not numbered by line); "\r\n" line
-/// ends are read as "\n".
+/// "x,y,name"). Blank lines are skipped (so the points are not numbered by line); the carriage
+/// returns that end a line are dropped ("\r\n" line ends are read as "\n").
 /// @param name  where the text came from (a file name, "standard input"), for messages
 /// Throws InvalidInput("parse_point_csv: <name>:<line>: <what>") for a line whose first two
 /// fields are not finite numbers (naming the line and what it holds).
