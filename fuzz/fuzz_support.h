@@ -18,6 +18,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/image.h"
+#include "geolens/source/source_file.h"
 
 namespace geolens::fuzz {
 
@@ -73,6 +74,18 @@ void read_or_refuse(Read&& read) {
   } catch (const InvalidInput& e) {
     if (verbose) std::fprintf(stderr, "fuzz: refused: %s\n", e.what());
   }
+}
+
+/// Opens `path` as the CLI opens an input (open_source) framed side x side pixels and, if it
+/// reads, draws its level 0 whole: the mesh and volume targets' whole work.
+inline void open_and_draw(const std::string& path, int side) {
+  read_or_refuse([&] {
+    SourceFileOptions options;
+    options.width = options.height = side;
+    const SourceFile file = open_source(path, options);
+    const Source& source = *file.source;
+    source.fetch(0, 0, 0, source.width(), source.height());
+  });
 }
 
 /// The description of a folder of files, one entry a line (a fuzz input that stays small and

@@ -7,7 +7,6 @@
 // allocation past libFuzzer's limit.
 #include "fuzz_support.h"
 #include "geolens/render3d/nrrd_file.h"
-#include "geolens/source/source_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace geolens;
@@ -18,12 +17,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string folder = fuzz::fs::weakly_canonical(fuzz::scratch(), error).string() + "/";
     if (error || inside.string().compare(0, folder.size(), folder) != 0) return 0;
   }
-  fuzz::read_or_refuse([&] {
-    SourceFileOptions options;
-    options.width = options.height = 4;
-    const SourceFile file = open_source(path, options);
-    const Source& source = *file.source;
-    source.fetch(0, 0, 0, source.width(), source.height());
-  });
+  fuzz::open_and_draw(path, 4);
   return 0;
 }

@@ -4,17 +4,10 @@
 // A finding: a crash, a sanitizer report, an exception other than InvalidInput, a hang, an
 // allocation past libFuzzer's limit.
 #include "fuzz_support.h"
-#include "geolens/source/source_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace geolens;
   const std::string path = fuzz::write_input("input.ply", data, size);
-  fuzz::read_or_refuse([&] {
-    SourceFileOptions options;
-    options.width = options.height = 16;
-    const SourceFile file = open_source(path, options);
-    const Source& source = *file.source;
-    source.fetch(0, 0, 0, source.width(), source.height());
-  });
+  fuzz::open_and_draw(path, 16);
   return 0;
 }

@@ -5,10 +5,7 @@
 # root on Debian 12; takes a few minutes, most of it CGAL on the 200 x 200 grid.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if ! dpkg-query -W -f='${Status}' libcgal-dev 2>/dev/null | grep -q "install ok installed"; then
-  apt-get update
-  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libcgal-dev
-fi
+bash scripts/install_packages.sh libcgal-dev
 bash scripts/setup.sh
 echo "nproc: $(nproc)"
 for exe in geolens_bench geolens_cgal_bench; do

@@ -27,14 +27,7 @@ runs_cap="${GEOLENS_FUZZ_RUNS:--1}"
 packages=(build-essential cmake pkg-config clang-14 libclang-rt-14-dev
           libeigen3-dev libcli11-dev nlohmann-json3-dev libspng-dev libjpeg62-turbo-dev libstb-dev
           libtinyobjloader-dev libnifti2-dev zlib1g-dev librsvg2-dev libcairo2-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  apt-get update
-  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+bash scripts/install_packages.sh "${packages[@]}"
 
 start=$SECONDS
 cmake -S . -B "$build" -DGEOLENS_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++-14 \

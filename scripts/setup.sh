@@ -22,13 +22,6 @@ packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-j
           pybind11-dev python3-dev python3-numpy python3-pytest
           libtinyobjloader-dev libnifti2-dev zlib1g-dev
           librsvg2-dev libcairo2-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  apt-get update
-  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+bash scripts/install_packages.sh "${packages[@]}"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j"$(bash scripts/jobs.sh)"
