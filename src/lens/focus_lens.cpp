@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
 #include "geolens/lens/texture_map.h"
+#include "lens/shared_room.h"
 #include "numerics/bracketed_root.h"
 
 namespace geolens {
@@ -646,97 +647,138 @@ double footprint_ratio(const Lens& lens) {
   return lens.footprint > 0 ? lens.footprint : 2 * lens.zoom;
 }
 
+namespace {
+
+// The group of lenses `members` at `log_zooms`, with the margin of its own footprint (before any
+// room is shared with a neighbour).
+FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lenses,
+                      const std::vector<double>& log_zooms, double width, double height) {
+  FocusGroup g;
+  g.lenses = std::move(members);
+  Eigen::AlignedBox2d peaks;
+  double ratio = 0;
+  for (size_t k : g.lenses) {
+    peaks.extend(lenses[k].region.peak());
+    ratio = std::max(ratio, footprint_ratio(lenses[k]));
+    g.log_zoom = std::max(g.log_zoom, log_zooms[k]);
+  }
+  g.centre = g.lenses.size() == 1 ? lenses[g.lenses[0]].region.peak() : peaks.center();
+  Eigen::AlignedBox2d bounds;
+  for (size_t k : g.lenses) {
+    g.reach =
+        std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
+    bounds.extend(lenses[k].region.bounds());
+  }
+  // A region over an image side is magnified about a point on that side, so the side stays.
+  g.fixed = g.centre;
+  if (bounds.min().x() <= 0) g.fixed.x() = 0;
+  if (bounds.max().x() >= width) g.fixed.x() = width;
+  if (bounds.min().y() <= 0) g.fixed.y() = 0;
+  if (bounds.max().y() >= height) g.fixed.y() = height;
+  g.on_side = !(bounds.min().x() > 0 && bounds.min().y() > 0 && bounds.max().x() < width &&
+                bounds.max().y() < height);
+  g.slides = !g.on_side && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
+    return lenses[k].region.circle().has_value();
+  });
+  // The footprint, the focus scaled by the ratio about that point, lies within the disk of
+  // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
+  // side slides away from it (Ring::least_slide), magnified about a point between the centre
+  // and that side; its footprint grows the same way, with the point estimated_fixed_offset puts
+  // there (the side's point where the region touches it, so the footprint does not jump).
+  const Eigen::Vector2d offset =
+      g.slides ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
+               : Eigen::Vector2d(g.fixed - g.centre);
+  g.margin = (ratio - 1) * (g.reach + offset.norm());
+  return g;
+}
+
+// Where the disks of radius reach + margin of two groups overlap, the room between their foci
+// (which do not overlap) is shared: each is given what its ring needs at its zoom on the ray
+// towards the other (ring_need) and half of what is left, or less where the other needs more,
+// and never more than its own margin. The margins of a pair then sum to at most the room, every
+// margin is a continuous function of the groups' places and zooms, and a group's is the least
+// over its neighbours, whatever their order. Neither wide footprints (of a lens near a side) nor
+// high requests take a neighbour's room beyond half of what both leave.
+void share_room(std::vector<FocusGroup>& groups) {
+  std::vector<double> own(groups.size()), shrunk(groups.size(), 1.0);
+  for (size_t i = 0; i < groups.size(); ++i) own[i] = groups[i].margin;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    for (size_t j = i + 1; j < groups.size(); ++j) {
+      FocusGroup &a = groups[i], &b = groups[j];
+      const double room = std::max((a.centre - b.centre).norm() - a.reach - b.reach, 0.0);
+      if (own[i] + own[j] <= room) continue;
+      const double need_a = std::min(own[i], ring_need(a.reach, a.log_zoom)),
+                   need_b = std::min(own[j], ring_need(b.reach, b.log_zoom));
+      const double half_left = 0.5 * (room - need_a - need_b);
+      const double offer_a = std::clamp(std::min(own[i], need_a + half_left), 0.0, room),
+                   offer_b = std::clamp(std::min(own[j], need_b + half_left), 0.0, room);
+      a.margin = std::min(a.margin, room - offer_b);
+      b.margin = std::min(b.margin, room - offer_a);
+      const double scale_a = own[i] > 0 ? a.margin / own[i] : 1.0;
+      const double scale_b = own[j] > 0 ? b.margin / own[j] : 1.0;
+      if (scale_a < shrunk[i]) shrunk[i] = scale_a, a.neighbour = int(b.lenses.front());
+      if (scale_b < shrunk[j]) shrunk[j] = scale_b, b.neighbour = int(a.lenses.front());
+    }
+  }
+}
+
+}  // namespace
+
+double ring_need(double reach, double log_zoom) {
+  return reach * std::expm1(log_zoom / kFitExponent);
+}
+
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
                                      const std::vector<double>& log_zooms, double width,
                                      double height) {
   require(log_zooms.size() == lenses.size(), "focus_groups", "one log zoom per lens expected");
   const size_t n = lenses.size();
-  // Union-find over the pairs whose magnified foci (disks of zoom x reach) overlap.
+  // Union-find over the pairs whose rings would not fit side by side: disks of reach x
+  // zoom^1.25 (reach + ring_need) about their peaks overlap (shared_room_zooms gives lenses near
+  // each other zooms at which that holds exactly where they are better magnified as one).
   std::vector<size_t> root(n);
   for (size_t k = 0; k < n; ++k) root[k] = k;
   auto find = [&](size_t k) {
     while (root[k] != k) k = root[k] = root[root[k]];
     return k;
   };
-  // Each lens's peak and magnified reach once: the pairs are n^2 (200 lenses, searched for their
+  // Each lens's peak and ring's reach once: the pairs are n^2 (200 lenses, searched for their
   // fits, spent most of their time here).
   std::vector<Eigen::Vector2d> peak(n);
-  std::vector<double> magnified(n);
+  std::vector<double> ringed(n);
   for (size_t k = 0; k < n; ++k) {
     peak[k] = lenses[k].region.peak();
-    magnified[k] = std::exp(log_zooms[k]) * lenses[k].region.reach();
+    ringed[k] = lenses[k].region.reach() + ring_need(lenses[k].region.reach(), log_zooms[k]);
   }
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
-      if ((peak[i] - peak[j]).norm() < magnified[i] + magnified[j]) root[find(i)] = find(j);
-  std::vector<FocusGroup> groups;
+      if ((peak[i] - peak[j]).norm() < ringed[i] + ringed[j]) root[find(i)] = find(j);
+  std::vector<std::vector<size_t>> members;
   std::vector<int> index(n, -1);
   for (size_t k = 0; k < n; ++k) {
     int& g = index[find(k)];
     if (g < 0) {
-      g = int(groups.size());
-      groups.emplace_back();
+      g = int(members.size());
+      members.emplace_back();
     }
-    groups[size_t(g)].lenses.push_back(k);
+    members[size_t(g)].push_back(k);
   }
-  for (FocusGroup& g : groups) {
-    Eigen::AlignedBox2d peaks;
-    double ratio = 0;
-    for (size_t k : g.lenses) {
-      peaks.extend(lenses[k].region.peak());
-      ratio = std::max(ratio, footprint_ratio(lenses[k]));
-      g.log_zoom = std::max(g.log_zoom, log_zooms[k]);
-    }
-    g.centre = g.lenses.size() == 1 ? lenses[g.lenses[0]].region.peak() : peaks.center();
-    Eigen::AlignedBox2d bounds;
-    for (size_t k : g.lenses) {
-      g.reach =
-          std::max(g.reach, (lenses[k].region.peak() - g.centre).norm() + lenses[k].region.reach());
-      bounds.extend(lenses[k].region.bounds());
-    }
-    // A region over an image side is magnified about a point on that side, so the side stays.
-    g.fixed = g.centre;
-    if (bounds.min().x() <= 0) g.fixed.x() = 0;
-    if (bounds.max().x() >= width) g.fixed.x() = width;
-    if (bounds.min().y() <= 0) g.fixed.y() = 0;
-    if (bounds.max().y() >= height) g.fixed.y() = height;
-    g.on_side = !(bounds.min().x() > 0 && bounds.min().y() > 0 && bounds.max().x() < width &&
-                  bounds.max().y() < height);
-    g.slides = !g.on_side && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
-      return lenses[k].region.circle().has_value();
-    });
-    // The footprint, the focus scaled by the ratio about that point, lies within the disk of
-    // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
-    // side slides away from it (Ring::least_slide), magnified about a point between the centre
-    // and that side; its footprint grows the same way, with the point estimated_fixed_offset puts
-    // there (the side's point where the region touches it, so the footprint does not jump).
-    const Eigen::Vector2d offset =
-        g.slides ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
-                 : Eigen::Vector2d(g.fixed - g.centre);
-    g.margin = (ratio - 1) * (g.reach + offset.norm());
-  }
-  // Footprints stop where they would meet a neighbour's: where the disks of radius reach +
-  // margin of two groups overlap, the room between their foci (they do not overlap) is shared
-  // so that the smaller margin keeps what it has up to half the room and the larger takes the
-  // rest (a wide footprint, of a lens near a side, does not take a small one's room), and no
-  // lens pushes another.
-  std::vector<double> shrunk(groups.size(), 1.0);  // the most each group's margin was shrunk by
-  for (size_t i = 0; i < groups.size(); ++i) {
-    for (size_t j = i + 1; j < groups.size(); ++j) {
-      FocusGroup &a = groups[i], &b = groups[j];
-      const double room = std::max((a.centre - b.centre).norm() - a.reach - b.reach, 0.0);
-      if (a.margin + b.margin <= room) continue;
-      const double was_a = a.margin, was_b = b.margin;
-      const double small = std::min(std::min(was_a, was_b), 0.5 * room);
-      a.margin = was_a <= was_b ? small : room - small;
-      b.margin = was_a <= was_b ? room - small : small;
-      const double scale_a = was_a > 0 ? a.margin / was_a : 1.0;
-      const double scale_b = was_b > 0 ? b.margin / was_b : 1.0;
-      if (scale_a < shrunk[i]) shrunk[i] = scale_a, a.neighbour = int(b.lenses.front());
-      if (scale_b < shrunk[j]) shrunk[j] = scale_b, b.neighbour = int(a.lenses.front());
-    }
-  }
+  std::vector<FocusGroup> groups;
+  for (std::vector<size_t>& m : members)
+    groups.push_back(make_group(std::move(m), lenses, log_zooms, width, height));
+  share_room(groups);
   return groups;
+}
+
+FocusGroup focus_group_of(const std::vector<Lens>& lenses, double width, double height) {
+  require(!lenses.empty(), "focus_group_of", "no lenses");
+  std::vector<size_t> all(lenses.size());
+  std::vector<double> log_zooms;
+  for (size_t k = 0; k < lenses.size(); ++k) {
+    all[k] = k;
+    log_zooms.push_back(std::log(lenses[k].zoom));
+  }
+  return make_group(std::move(all), lenses, log_zooms, width, height);
 }
 
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double width, double height) {
@@ -768,6 +810,18 @@ double rim_distortion_bound(double zoom, double ratio) {
   return (1 + rim.b * rim.a) * (1 + power) - 1;
 }
 
+namespace {
+// The zoom that fits where the footprint's edge is `ratio` times the focus's extent on the
+// ray that has least room: a radial bound's distortion of 4.
+double zoom_of_room(double ratio) { return ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0; }
+}  // namespace
+
+double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,
+                          double band, double width, double height) {
+  return zoom_of_room(
+      Ring(group, lenses, cell, band, width, height).min_ratio(group.log_zoom).ratio);
+}
+
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
                                   double width, double height, std::vector<std::string>* reasons,
                                   const std::vector<size_t>* only) {
@@ -780,8 +834,7 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
       continue;
     const Ring ring(group, lenses, cell, band, width, height);
     const Ring::Room room = ring.min_ratio(group.log_zoom);
-    for (size_t k : group.lenses)
-      fits[k] = room.ratio > 1 ? std::pow(room.ratio, kFitExponent) : 1.0;
+    for (size_t k : group.lenses) fits[k] = zoom_of_room(room.ratio);
     if (!reasons) continue;
     std::string why;
     if (room.by == Ring::Room::By::kSide) {
@@ -798,8 +851,7 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
             std::to_string(int(std::lround(std::max(gap, 0.0)))) +
             " px from the region (a lens farther from it or smaller fits more)";
     } else if (room.by == Ring::Room::By::kDisk && group.neighbour >= 0) {
-      why = "lens " + std::to_string(group.neighbour + 1) +
-            " beside it (lenses farther apart fit more)";
+      why = beside_reason(size_t(group.neighbour));
     } else {
       why = "its footprint (a larger footprint ratio fits more)";
     }
@@ -810,7 +862,7 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
         if (j != k) with += (with.empty() ? "" : ", ") + std::to_string(j + 1);
       (*reasons)[k] = with.empty() ? why
                                    : why + "; magnified as one with lens " + with +
-                                         " (their magnified foci overlap)";
+                                         " (their rings would not fit side by side)";
     }
   }
   return fits;

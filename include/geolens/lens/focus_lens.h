@@ -63,7 +63,8 @@ double radial_distortion_bound(double zoom, double ratio);
 /// times radial_distortion_bound. Infinite when ratio <= zoom.
 double rim_distortion_bound(double zoom, double ratio);
 
-/// Lenses whose magnified foci would overlap (disks of zoom x reach around their peaks) are
+/// Lenses whose rings would not fit side by side (disks of reach x zoom^1.25, reach + ring_need,
+/// around their peaks overlap; a superset of those whose magnified foci would overlap) are
 /// magnified together, as one focus: the union of their regions, at the largest of their zooms,
 /// about the centre of their peaks, or where the regions cross a side of the width x height image
 /// (pixels), about the point of that side nearest it (so the side stays); its reach is the
@@ -72,8 +73,10 @@ double rim_distortion_bound(double zoom, double ratio);
 /// footprint grown as if it were magnified about a point between its centre and the side, the
 /// side's point where it touches it (so the footprint does not jump there). Footprints do not
 /// overlap: where the disks of radius reach + margin of two groups would, the room between their
-/// foci is shared, the smaller margin kept up to half of it and the larger taking the rest, so no
-/// lens moves another (and a lens with a near neighbour fits a lower zoom).
+/// foci is shared, each given what its ring needs at its zoom and half of what is left (less
+/// where the other needs more), so no lens moves another and every margin is continuous in the
+/// lenses' places and zooms (a lens with a near neighbour fits a lower zoom; GeometricLens gives
+/// lenses near each other their zooms first, docs/design.md "Several lenses share room").
 struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels
@@ -98,6 +101,12 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
                                      double height);
 /// The same at the lenses' own zooms.
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double width, double height);
+/// All of `lenses` (at their own zooms) as one group, alone: its footprint's own margin.
+FocusGroup focus_group_of(const std::vector<Lens>& lenses, double width, double height);
+
+/// How far beyond a focus of extent `reach` (pixels) its footprint's edge must lie for a ring
+/// at `log_zoom` to fit (the radial bound's distortion at most 4): reach (zoom^1.25 - 1), pixels.
+double ring_need(double reach, double log_zoom);
 
 /// Whether the image border (width x height, pixels) is too far from `group`'s footprint to round
 /// its edge anywhere: 1.3 times the group's disk (radius reach + margin) from its centre or more.
@@ -124,6 +133,10 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
                                   double width, double height,
                                   std::vector<std::string>* reasons = nullptr,
                                   const std::vector<size_t>* only = nullptr);
+/// The zoom at which `group` of `lenses` fits, as fitting_zooms tells it, with the margin the
+/// group has.
+double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,
+                          double band, double width, double height);
 
 /// What the focus lens asks of the flattening at the vertices `V` (#V x 2, pixels) of a mesh of
 /// cell side `cell` (pixels) on a width x height image, lens i with log zoom `log_zooms[i]`
