@@ -281,7 +281,7 @@ void report_group_zooms(const std::vector<Lens>& asked, const std::vector<Lens>&
 }  // namespace
 
 std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
-                                         std::vector<std::string>& reasons) const {
+                                         std::vector<std::string>& reasons, bool merge) const {
   // The fits of lenses at their zooms, on the box and mesh cell they would be solved on; the
   // footprint of a lens that has no ratio of its own follows its zoom (footprint_ratio).
   auto fits_of = [&](const std::vector<Lens>& at, std::vector<std::string>* why,
@@ -300,7 +300,7 @@ std::vector<Lens> GeometricLens::fitting(const std::vector<Lens>& lenses,
         const double cell = cell_size(solved_box(at), options_.mesh);
         return FitMesh{cell, focus_band(lenses, cell)};
       },
-      width_, height_, &neighbours);
+      width_, height_, merge, &neighbours);
   const std::vector<Lens> shared = out;
   for (int round = 0; round < kFitRounds; ++round) {
     // Every group that does not fit is lowered with the others as they were (not one after the
@@ -364,7 +364,41 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
     grid = base_grid(lenses, box);
     return lenses;
   }
-  std::vector<Lens> out = fitting(lenses, r.zoom_fit_reasons);
+  MeshMemo* memo = cache ? &cache->mesh : nullptr;
+  bool merged = false;
+  std::vector<Lens> out = fitted_focus(lenses, true, r, grid, box, memo, draft, &merged);
+  // Lenses magnified as one whose ring their mesh does not hold (two circles with a gap between
+  // them beside a side: 1.13 where they fit 1.80 apart) are solved apart where that gives the
+  // lens that gets least more.
+  if (!r.mesh_limited || !merged) return out;
+  LensResult apart_r;
+  Grid apart_grid;
+  Eigen::AlignedBox2d apart_box;
+  MeshMemo apart_memo;
+  std::vector<Lens> apart = fitted_focus(lenses, false, apart_r, apart_grid, apart_box,
+                                         memo ? &apart_memo : nullptr, draft);
+  auto least = [](const std::vector<double>& zooms) {
+    return *std::min_element(zooms.begin(), zooms.end());
+  };
+  if (!(least(apart_r.zoom_fits) > least(r.zoom_fits))) return out;
+  r.zoom_fits = std::move(apart_r.zoom_fits);
+  r.zoom_fit_reasons = std::move(apart_r.zoom_fit_reasons);
+  r.mesh_limited = apart_r.mesh_limited;
+  grid = std::move(apart_grid);
+  box = apart_box;
+  if (memo) *memo = std::move(apart_memo);
+  return apart;
+}
+
+std::vector<Lens> GeometricLens::fitted_focus(const std::vector<Lens>& lenses, bool merge,
+                                              LensResult& r, Grid& grid, Eigen::AlignedBox2d& box,
+                                              MeshMemo* memo, bool draft, bool* merged) const {
+  std::vector<Lens> out = fitting(lenses, r.zoom_fit_reasons, merge);
+  if (merged) {
+    const std::vector<FocusGroup> groups = focus_groups(out, width_, height_);
+    *merged = std::any_of(groups.begin(), groups.end(),
+                          [](const FocusGroup& g) { return g.lenses.size() > 1; });
+  }
   std::vector<double>& fits = r.zoom_fits;
   for (const Lens& lens : out) fits.push_back(lens.zoom);
   // Then what the mesh of the fitted lenses, the one they are solved on, holds without folding
@@ -381,7 +415,6 @@ std::vector<Lens> GeometricLens::fitted(const std::vector<Lens>& lenses, LensRes
     }
     report_group_zooms(lenses, out, width_, height_, r);
   };
-  MeshMemo* memo = cache ? &cache->mesh : nullptr;
   if (memo && moved_only(memo->lenses, out)) {
     if (std::optional<Grid> moved = moved_grid(*memo, out, box)) {
       grid = std::move(*moved);

@@ -65,7 +65,8 @@ std::string beside_reason(size_t neighbour) {
 }
 
 std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMeshOf& mesh_of,
-                                    double width, double height, std::vector<int>* neighbours) {
+                                    double width, double height, bool merge,
+                                    std::vector<int>* neighbours) {
   const size_t n = lenses.size();
   // The lenses of `members`, each at log zoom L.
   auto at = [&](const std::vector<size_t>& members, double log_zoom) {
@@ -136,6 +137,7 @@ std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMe
     std::sort(conflicts.begin(), conflicts.end());
     bool merged = false;
     for (const auto& [l, i, j] : conflicts) {
+      if (!merge) break;
       std::vector<size_t> both = units[i];
       both.insert(both.end(), units[j].begin(), units[j].end());
       std::sort(both.begin(), both.end());

@@ -39,10 +39,10 @@ using FitMeshOf = std::function<FitMesh(const std::vector<Lens>&)>;
 ///
 /// Regions that overlap are always merged. GeometricLens then lowers whatever still does not fit
 /// (an image side with a neighbour, the mesh).
-/// With `neighbours`, per lens the index of the lens whose room set its zoom (the pair at the
-/// least level, where that is below its cap), else -1.
+/// Without `merge`, every lens stays apart. With `neighbours`, per lens the index of the lens
+/// whose room set its zoom (the pair at the least level, where that is below its cap), else -1.
 std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMeshOf& mesh_of,
-                                    double width, double height,
+                                    double width, double height, bool merge = true,
                                     std::vector<int>* neighbours = nullptr);
 
 /// Why a lens gets less than asked where lens `neighbour` (an index) took the room: "lens N

@@ -673,8 +673,9 @@ TEST(FocusLens, TwoLensesMovedTogetherShareTheRoomWithoutAJump) {
 
 // The robustness sweep: 1000 seeded setups on a 512 px image, 1 to 6 lenses of radius 5
 // to 400 px and zoom 1 to 8 anywhere (corners, borders, centre), overlapping or not. No triangle
-// flips, no focus is shrunk, and every lens that fits where it is and whose magnified focus
-// overlaps no other's reaches its zoom (or the largest that fits there) over its whole region.
+// flips, no focus is shrunk, and every lens that fits where it is and whose ring at the zoom
+// asked meets no other's (a group of one) reaches its zoom (or the largest that fits there) over
+// its whole region.
 TEST(FocusLens, ThousandRandomSetups) {
   std::mt19937 random(20261129);
   std::uniform_real_distribution<double> unit(0, 1);

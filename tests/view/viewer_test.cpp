@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -255,6 +257,47 @@ TEST_F(View, ADragToAlongAndAcrossASideShowsAContinuousZoom) {
     full = full || b.got == b.asked;
   }
   EXPECT_TRUE(full);
+}
+
+// Dragged past another lens, 1 source pixel a frame, 40 px below it: the two share the room
+// between them and are magnified as one where that gives both more, so neither is switched off
+// (both at least 1.5 in every frame shown; the two as one, where their mesh did not hold their
+// ring, got 1.13), and the zoom changes by at most 0.3 a pixel (the largest step, where the mesh
+// stops holding the two as one, 0.25).
+TEST_F(View, ADragPastAnotherLensNeverSwitchesEitherOff) {
+  const std::string script = path("past.txt"), log = path("past.csv");
+  std::ofstream out(script);
+  out << "drag 1 280 160 240\n";
+  for (int frame = 10; frame <= 250; frame += 10) out << "frame " << frame << " wait\n";
+  out << "quit\n";
+  out.close();
+  const ViewRun r = run(path("in.png") +
+                        " --size 320x240 --lens circle:40,160,24:2 --lens circle:160,120,24:2 "
+                        "--script " +
+                        script + " --frame-log " + log);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Per frame shown: where lens 1 is, and the zooms the two get.
+  std::map<int, std::array<double, 3>> frames;
+  for (const FrameRow& row : frame_rows(read_text(log))) {
+    ASSERT_TRUE(row.lens == 1 || row.lens == 2) << row.lens;
+    if (row.lens == 1) frames[row.frame][0] = row.x;
+    frames[row.frame][size_t(row.lens)] = row.got;
+  }
+  ASSERT_GE(frames.size(), size_t(24));
+  const std::array<double, 3>* before = nullptr;
+  for (const auto& [frame, now] : frames) {
+    for (size_t k : {1, 2}) {
+      EXPECT_GE(now[k], 1.5) << "frame " << frame << " lens " << k;
+      if (before)
+        EXPECT_LE(std::abs(now[k] - (*before)[k]),
+                  0.3 * std::max(1.0, std::abs(now[0] - (*before)[0])))
+            << "frame " << frame << " lens " << k;
+    }
+    before = &now;
+  }
+  EXPECT_EQ(frames.rbegin()->second[0], 280);
+  // At the end lens 2 has its room again; lens 1, 16 px from the right side, is held by it.
+  EXPECT_NEAR(frames.rbegin()->second[2], 2, 1e-9);
 }
 
 TEST_F(View, TheMouseDragsZoomsAddsAndRemovesLenses) {

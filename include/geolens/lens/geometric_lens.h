@@ -172,9 +172,15 @@ class GeometricLens {
                            Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
                            bool draft = false) const;
   // kFocus: the lenses at the largest zooms up to theirs that fit where they are, their
-  // footprints at those zooms (fitting_zooms), with what limits each in `reasons`.
-  std::vector<Lens> fitting(const std::vector<Lens>& lenses,
-                            std::vector<std::string>& reasons) const;
+  // footprints at those zooms (fitting_zooms), with what limits each in `reasons`; lenses near
+  // each other magnified as one where that gives them more, unless not `merge`.
+  std::vector<Lens> fitting(const std::vector<Lens>& lenses, std::vector<std::string>& reasons,
+                            bool merge) const;
+  // fitted's kFocus part, with or without merging lenses near each other (fitting); `merged`
+  // tells whether some lenses were magnified as one.
+  std::vector<Lens> fitted_focus(const std::vector<Lens>& lenses, bool merge, LensResult& r,
+                                 Grid& grid, Eigen::AlignedBox2d& box, MeshMemo* memo, bool draft,
+                                 bool* merged = nullptr) const;
   // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
   PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
                          const std::vector<double>& heights) const;
