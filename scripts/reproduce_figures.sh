@@ -365,11 +365,16 @@ P(f"- **Maximum shape distortion: {verdict}.** The geometric lens's worst triang
    if beaten else "") +
   f". No fold, and unlike the zoom-in ({m2['zoom_in']['occluded_percent']:.1f} % of the image "
   f"hidden at zoom 2) nothing is hidden.")
+flat_names = ["bifocal", "flattop_linear", "flattop_cosine"]
+flat_tops = [m2[n]["focus_uniformity"] for n in flat_names]
 focus_holds = g2["focus_uniformity"] < 1.05 and zone(g2, "focus") < zone(m2["fisheye"], "focus")
 P(f"- **Focus: {'holds' if focus_holds else 'does not hold'}.** Its focus is neither uniform nor undistorted: magnification "
   f"varies {g2['focus_uniformity']:.2f}x across the focus at zoom 2 "
-  f"({g3['focus_uniformity']:.2f}x at zoom 3) against exactly 1 for zoom-in, bifocal and the flat "
-  f"tops, and the mean shape distortion there is {zone(g2, 'focus'):.2f} against 0 for those and "
+  f"({g3['focus_uniformity']:.2f}x at zoom 3); over the same circle the zoom-in's varies "
+  f"{m2['zoom_in']['focus_uniformity']:.2f}x and the bifocal's and the flat tops' "
+  f"{min(flat_tops):.2f}x to {max(flat_tops):.2f}x (uniform within their flat tops, which span "
+  f"part of the circle), and the mean shape distortion there is {zone(g2, 'focus'):.2f} against "
+  f"{max(zone(m2[n], 'focus') for n in flat_names):.2f} for those and "
   f"{zone(m2['fisheye'], 'focus'):.2f} for the Sarkar-Brown fisheye. The gaussian bump is peaked "
   f"(fisheye-like); with adaptive subdivision its focus measures "
   f"{zone(var['cmp_map2_sub'], 'focus'):.2f} / {zone(var['cmp_map2_sub'], 'focus', 'max'):.2f} "
