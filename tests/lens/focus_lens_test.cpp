@@ -288,8 +288,9 @@ TEST(FocusLens, ALensShortOfItsZoomIsToldWhatLimitsIt) {
             0u)
       << side.zoom_fit_reasons[0];
   // Two lenses whose rings at 6 would not fit side by side, and which would fit less as one.
-  const LensResult pair = GeometricLens(2048, 2048).solve(
-      {Lens{Region::circle({824, 1024}, 40), 6}, Lens{Region::circle({1224, 1024}, 40), 6}});
+  const LensResult pair = GeometricLens(2048, 2048)
+                              .solve({Lens{Region::circle({824, 1024}, 40), 6},
+                                      Lens{Region::circle({1224, 1024}, 40), 6}});
   for (size_t k : {0, 1}) EXPECT_LT(pair.zoom_fits.at(k), 6);
   EXPECT_EQ(pair.zoom_fit_reasons.at(0).rfind("lens 2 beside it", 0), 0u)
       << pair.zoom_fit_reasons[0];
@@ -307,9 +308,11 @@ TEST(FocusLens, ALensShortOfItsZoomIsToldWhatLimitsIt) {
 // larger asked, lowered where the group does not fit: each is told the zoom it gets, and only the
 // one that gets less than asked is warned, with what limits the group and with which lens (the
 // lens asked 3 was told "2.60 of the 3 asked, limited by the image's left side" where it was shown
-// at 3.34). Moved towards each other in 100 px steps, the report and the picture agree at each.
+// at 3.34). Moved towards each other in 100 px steps, the report and the picture agree at each;
+// the group gets lens 1's 4 from 200 px apart.
 TEST(FocusLens, LensesMagnifiedAsOneAreToldTheZoomTheyGet) {
   const GeometricLens geometric(4725, 4050);
+  int short_of_4 = 0;
   for (const double gap : {400.0, 300.0, 200.0, 100.0, 0.0}) {
     const std::vector<Lens> lenses = {Lens{Region::circle({1500, 2000}, 150), 4},
                                       Lens{Region::circle({1770 + gap, 2000}, 120), 3}};
@@ -319,10 +322,15 @@ TEST(FocusLens, LensesMagnifiedAsOneAreToldTheZoomTheyGet) {
     EXPECT_NEAR(r.zoom_fits[0], r.zoom_fits[1], 1e-12) << gap;
     EXPECT_GT(r.zoom_fits[1], 3) << gap;  // the group at more than lens 2 asked: no reason
     EXPECT_TRUE(r.zoom_fit_reasons[1].empty()) << gap << ": " << r.zoom_fit_reasons[1];
-    EXPECT_LT(r.zoom_fits[0], 4 * (1 - 1e-3)) << gap;  // the group does not fit lens 1's 4
-    EXPECT_NE(r.zoom_fit_reasons[0].find("; magnified as one with lens 2"), std::string::npos)
-        << gap << ": " << r.zoom_fit_reasons[0];
+    if (r.zoom_fits[0] < 4 * (1 - 1e-3)) {  // the group does not fit lens 1's 4
+      ++short_of_4;
+      EXPECT_NE(r.zoom_fit_reasons[0].find("; magnified as one with lens 2"), std::string::npos)
+          << gap << ": " << r.zoom_fit_reasons[0];
+    } else {
+      EXPECT_TRUE(r.zoom_fit_reasons[0].empty()) << gap << ": " << r.zoom_fit_reasons[0];
+    }
   }
+  EXPECT_GE(short_of_4, 2);  // 400 and 300 px apart: 3.62 and 3.96
 }
 
 // A circle dragged in 1 px steps towards the top side and across it gets the zoom it asks at

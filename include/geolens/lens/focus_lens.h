@@ -29,7 +29,7 @@ double footprint_ratio(const Lens& lens);
 constexpr double kSharpestMeshedCorner = 5;
 
 /// Whether the focus lens's grid of cell side `cell` (pixels) follows the lenses: when every lens
-/// is a circle spanning at least 3 cells or an outline (a polygon, a traced mask blob) spanning a
+/// is a circle of radius at least 2 cells or an outline (a polygon, a traced mask blob) spanning a
 /// cell with no corner sharper than kSharpestMeshedCorner, GeometricLens makes its grid follow
 /// every region's boundary and every footprint's edge (focus_curves), so no triangle crosses
 /// them; otherwise the focus is blended over a band of cells (focus_band).
