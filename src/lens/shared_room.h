@@ -26,21 +26,23 @@ using FitMeshOf = std::function<FitMesh(const std::vector<Lens>&)>;
 /// `lenses` (focus model, on a width x height image) with the zooms that lenses near each other
 /// get, the rest as asked; each set of lenses is fitted on `mesh_of` it (fitting_zooms):
 ///
-/// - Apart, lens i would get e^(t_i c_i): c_i the log zoom it fits alone where it is (at most
-///   the one asked), t_i in [0, 1] the least over its neighbours j of the fraction t at which
-///   the two rings fit side by side, (r_i + band) e^(t c_i / 0.8) + (r_j + band) e^(t c_j / 0.8)
-///   = |p_i - p_j| (reach r, peak p; ring_need): the shortfall shared by both as the same
-///   fraction of their log zooms, and every zoom a continuous function of the lenses' places,
-///   sizes and zooms, rising with the zoom asked.
-/// - Lenses are magnified together (one focus group, as focus_groups makes it) only where that
-///   gives both at least as much as apart: the pair in most conflict first, while the merged
-///   group's own fit is at least both apart zooms and their magnified foci overlap at it (so
-///   focus_groups groups them). A merged group's lenses all get its zoom.
+/// - Apart, lens i gets min(c_i, L_i): c_i the log zoom it fits alone where it is (at most the
+///   one asked), L_i the least over its neighbours j of the level L at which the two rings fit
+///   side by side, each at the least of L and its own c: (r_i + band) e^(min(c_i, L) / 0.8) +
+///   (r_j + band) e^(min(c_j, L) / 0.8) = |p_i - p_j| (reach r, peak p; ring_need). The
+///   shortfall is shared by raising both to one level (the lens asked less keeps its zoom, the
+///   other takes the room left), so two lenses that could both get 2 do, and every zoom is a
+///   continuous function of the lenses' places, sizes and zooms, rising with the zoom asked.
+/// - Lenses are magnified together (one focus group) only where that gives both at least as
+///   much as apart: the pair in most conflict first, where the merged group's own fit is at
+///   least both apart zooms and some two of their rings meet at it (so focus_groups groups them).
+///   A merged group's lenses all get its zoom. Regions that overlap are always merged (apart they
+///   get nothing).
 ///
-/// Regions that overlap are always merged. GeometricLens then lowers whatever still does not fit
-/// (an image side with a neighbour, the mesh).
 /// Without `merge`, every lens stays apart. With `neighbours`, per lens the index of the lens
 /// whose room set its zoom (the pair at the least level, where that is below its cap), else -1.
+/// GeometricLens then lowers whatever still does not fit (an image side with a neighbour, the
+/// mesh).
 std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMeshOf& mesh_of,
                                     double width, double height, bool merge = true,
                                     std::vector<int>* neighbours = nullptr);
