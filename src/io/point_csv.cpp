@@ -52,12 +52,12 @@ void append_number(std::string& text, double v) {
 
 }  // namespace
 
-PointTable parse_point_csv(const std::string& text, const std::string& name) {
+PointTable parse_point_csv(const std::string& text, const std::string& name, size_t max_points) {
   PointTable table;
   std::vector<double> coordinates;
   std::string_view rest = text;
   bool first = true;  // the first line that is not blank: perhaps the header
-  for (int number_of_line = 1; !rest.empty(); ++number_of_line) {
+  for (size_t number_of_line = 1; !rest.empty(); ++number_of_line) {
     const size_t end = rest.find('\n');
     std::string_view line = rest.substr(0, end);
     rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
@@ -76,6 +76,9 @@ PointTable parse_point_csv(const std::string& text, const std::string& name) {
     require(x && y && f.has_y, "parse_point_csv",
             name + ":" + std::to_string(number_of_line) +
                 ": expected two finite numbers \"x,y\" first, got \"" + quoted_line(line) + "\"");
+    require(table.rest.size() < max_points, "parse_point_csv",
+            name + ":" + std::to_string(number_of_line) + ": more than " +
+                std::to_string(max_points) + " points (split the file)");
     coordinates.push_back(*x);
     coordinates.push_back(*y);
     table.rest.emplace_back(f.rest);

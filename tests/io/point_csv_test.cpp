@@ -80,6 +80,20 @@ TEST(PointCsv, EveryCarriageReturnEndingALineIsDropped) {
   EXPECT_THROW(parse_point_csv("a,0\r\r\n1,1,\n", "u.csv"), InvalidInput);
 }
 
+// A table of more points than the bound is refused at the first point beyond it, naming the file
+// and its line, before it is read to the end.
+TEST(PointCsv, MorePointsThanTheBoundAreRefused) {
+  EXPECT_EQ(parse_point_csv("x,y\n1,2\n\n3,4\n5,6\n", "three.csv", 3).points.rows(), 3);
+  try {
+    parse_point_csv("x,y\n1,2\n\n3,4\n5,6\n7,8\n", "four.csv", 3);
+    ADD_FAILURE() << "four points read with a bound of three";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "parse_point_csv: four.csv:6: more than 3 points (split the file)");
+  }
+  EXPECT_EQ(kMaxCsvPoints, size_t(1) << 22);
+}
+
 TEST(PointCsv, BadLinesAreRefusedNamingTheFileAndLine) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"x,y\n1,2\n3,abc\n", "in.csv:3: expected two finite numbers \"x,y\" first, got \"3,abc\""},
