@@ -77,7 +77,8 @@ void write_file(const std::string& path, const std::string& content) {
   write_file(path, content.data(), content.size());
 }
 
-std::string read_file(const std::string& path, const char* function, const std::string& kind) {
+std::string read_file(const std::string& path, const char* function, const std::string& kind,
+                      size_t max_bytes) {
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   require(!std::filesystem::is_directory(status), function,
@@ -85,6 +86,12 @@ std::string read_file(const std::string& path, const char* function, const std::
   // Read whole, a device never ends (/dev/zero) and a FIFO may never open.
   require(!std::filesystem::exists(status) || std::filesystem::is_regular_file(status), function,
           "'" + path + "' is not a regular file (a device or a FIFO), not a " + kind + " file");
+  if (std::filesystem::is_regular_file(status)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    require(error || size <= max_bytes, function,
+            "'" + path + "' is larger than the " + std::to_string(max_bytes >> 20) + " MiB a " +
+                kind + " file may hold");
+  }
   std::ifstream in(path, std::ios::binary);
   require(bool(in), function, "cannot open '" + path + "'");
   std::stringstream text;

@@ -265,11 +265,14 @@ size_t json_depth(const std::string& text) {
 }
 
 VectorData parse_geojson(const std::string& text, const std::string& name) {
+  require(text.size() <= kMaxGeoJsonBytes, "parse_geojson",
+          "'" + name + "' is larger than the " + std::to_string(kMaxGeoJsonBytes >> 20) +
+              " MiB a GeoJSON text may hold");
   return Reader(name).document(text);
 }
 
 VectorData read_geojson(const std::string& path) {
-  return parse_geojson(read_file(path, "read_geojson", "GeoJSON"), path);
+  return parse_geojson(read_file(path, "read_geojson", "GeoJSON", kMaxGeoJsonBytes), path);
 }
 
 std::string geojson_text(const VectorData& data) {

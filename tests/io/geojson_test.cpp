@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -251,6 +252,28 @@ TEST_F(GeoJsonFile, ReadsAFileAndNamesItWhenItCannot) {
     } catch (const InvalidInput& e) {
       EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
     }
+  }
+}
+
+// A GeoJSON file larger than kMaxGeoJsonBytes is refused by its size before it is read (a 65 MiB
+// sparse file, read as zeros it would be 65 MiB of text), and so is such a text however it came.
+TEST_F(GeoJsonFile, ALargerFileThanTheBoundIsRefusedUnread) {
+  const std::string big = path("big.geojson");
+  std::ofstream(big).close();
+  std::filesystem::resize_file(big, kMaxGeoJsonBytes + (size_t(1) << 20));
+  try {
+    read_geojson(big);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "read_geojson: '" + big + "' is larger than the 64 MiB a GeoJSON file may hold");
+  }
+  try {
+    parse_geojson(std::string(kMaxGeoJsonBytes + 1, ' '), "standard input");
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "parse_geojson: 'standard input' is larger than the 64 MiB a GeoJSON text may hold");
   }
 }
 

@@ -3,6 +3,7 @@
 // reading a text file whole.
 
 #include <cstddef>
+#include <limits>
 #include <string>
 
 namespace geolens {
@@ -35,9 +36,11 @@ void write_file(const std::string& path, const void* data, size_t size);
 void write_file(const std::string& path, const std::string& content);
 
 /// The bytes of the file at `path`. Throws InvalidInput, naming `function`, if `path` is a folder
-/// ("'PATH' is a directory, not a KIND file"), a device or a FIFO, cannot be opened or fails
-/// while read.
-std::string read_file(const std::string& path, const char* function, const std::string& kind);
+/// ("'PATH' is a directory, not a KIND file"), a device or a FIFO, holds more than `max_bytes`
+/// ("'PATH' is larger than the N MiB a KIND file may hold", before it is read), cannot be opened
+/// or fails while read.
+std::string read_file(const std::string& path, const char* function, const std::string& kind,
+                      size_t max_bytes = std::numeric_limits<size_t>::max());
 
 /// True when `a` and `b` name the same file (or would, once created).
 bool same_file(const std::string& a, const std::string& b);
