@@ -770,21 +770,23 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
   return groups;
 }
 
+namespace {
+std::vector<double> own_log_zooms(const std::vector<Lens>& lenses) {
+  std::vector<double> log_zooms;
+  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
+  return log_zooms;
+}
+}  // namespace
+
 FocusGroup focus_group_of(const std::vector<Lens>& lenses, double width, double height) {
   require(!lenses.empty(), "focus_group_of", "no lenses");
   std::vector<size_t> all(lenses.size());
-  std::vector<double> log_zooms;
-  for (size_t k = 0; k < lenses.size(); ++k) {
-    all[k] = k;
-    log_zooms.push_back(std::log(lenses[k].zoom));
-  }
-  return make_group(std::move(all), lenses, log_zooms, width, height);
+  for (size_t k = 0; k < lenses.size(); ++k) all[k] = k;
+  return make_group(std::move(all), lenses, own_log_zooms(lenses), width, height);
 }
 
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double width, double height) {
-  std::vector<double> log_zooms;
-  for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
-  return focus_groups(lenses, log_zooms, width, height);
+  return focus_groups(lenses, own_log_zooms(lenses), width, height);
 }
 
 bool footprint_clear_of_border(const FocusGroup& group, double width, double height) {

@@ -68,6 +68,8 @@ std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMe
                                     double width, double height, bool merge,
                                     std::vector<int>* neighbours) {
   const size_t n = lenses.size();
+  if (neighbours) neighbours->assign(n, -1);
+  if (n < 2) return lenses;  // a lens alone (a drag's every frame) shares nothing
   // The lenses of `members`, each at log zoom L.
   auto at = [&](const std::vector<size_t>& members, double log_zoom) {
     std::vector<Lens> out;
@@ -153,7 +155,6 @@ std::vector<Lens> shared_room_zooms(const std::vector<Lens>& lenses, const FitMe
     if (!merged) break;
   }
   std::vector<Lens> out = lenses;
-  if (neighbours) neighbours->assign(n, -1);
   for (size_t u = 0; u < units.size(); ++u) {
     if (!known.count(units[u])) continue;  // near no other: as asked, the fit lowers it
     for (size_t k : units[u]) {
