@@ -67,8 +67,12 @@ std::string trim(const std::string& s) {
 }
 
 /// Inflates a gzip (or zlib) stream: exactly `expected` bytes, or fewer if the stream ends.
+/// Deflate expands by at most 1032:1 (zlib's FAQ), so no more than that times `size` is
+/// allocated whatever a header claims: a gzip bomb's claim costs what its bytes can hold.
 std::string inflate_all(const unsigned char* data, size_t size, size_t expected,
                         const std::string& where) {
+  constexpr size_t kMaxDeflateRatio = 1032;
+  expected = std::min(expected, size * kMaxDeflateRatio + 64);  // a file's size: no overflow
   std::string out(expected, '\0');
   z_stream stream{};
   require(inflateInit2(&stream, 15 + 32) == Z_OK, "load_nrrd", where + "zlib failed to start");

@@ -893,6 +893,9 @@ case("nrrd_negative_size", f"magnify v.nrrd {SCENE_ARGS}",
 case("nrrd_corrupt_gzip", f"magnify v.nrrd {SCENE_ARGS}",
      {"v.nrrd": mk.nrrd((16, 16, 16), encoding="gzip", data=b"\x1f\x8b\x08\0garbage" * 9)},
      words=("v.nrrd",))
+case("nrrd_gzip_claims_a_gigabyte", f"magnify v.nrrd {SCENE_ARGS}",  # allocated 1 GiB, once
+     {"v.nrrd": mk.nrrd((1024, 1024, 256), "float", "gzip", data=mk.gzipped(bytes(1000)))},
+     words=("v.nrrd", "1073741824 bytes", "the gzip data holds 1000 bytes"))
 case("volume_transfer_dev_zero", f"magnify v.nrrd {SCENE_ARGS} --transfer /dev/zero",
      {"v.nrrd": mk.nrrd((16, 16, 16), data=SPHERE)}, words=("/dev/zero",))
 case("volume_transfer_bad_table", f"magnify v.nrrd {SCENE_ARGS} --transfer t.txt",
