@@ -13,6 +13,9 @@ namespace geolens {
 
 namespace {
 
+/// 2^22 points of a few columns; a larger file is refused before it is read.
+constexpr size_t kMaxCsvBytes = size_t(256) << 20;
+
 // The fields of a line cut at its first two commas: x, y and the rest from the second comma on
 // (each of x and y empty when missing).
 struct Fields {
@@ -89,7 +92,7 @@ PointTable parse_point_csv(const std::string& text, const std::string& name, siz
 }
 
 PointTable read_point_csv(const std::string& path) {
-  return parse_point_csv(read_file(path, "read_point_csv", "CSV"), path);
+  return parse_point_csv(read_file(path, "read_point_csv", "CSV", kMaxCsvBytes), path);
 }
 
 std::string point_csv_text(const PointTable& table) {

@@ -19,6 +19,9 @@ namespace geolens {
 
 namespace {
 
+/// A NRRD file, or its detached data, holds at most the samples read and a header.
+constexpr size_t kMaxNrrdBytes = kMaxVolumeBytes + (size_t(1) << 20);
+
 using detail::VoxelType;
 
 bool type_named(const std::string& name, VoxelType& type) {
@@ -177,7 +180,7 @@ std::string nrrd_data_path(const std::string& path) {
 ScalarVolume load_nrrd(const std::string& path) {
   const char* f = "load_nrrd";
   const std::string where = "'" + path + "': ";
-  const std::string text = read_file(path, f, "NRRD");
+  const std::string text = read_file(path, f, "NRRD", kMaxNrrdBytes);
   Header header = parse_header(text, where);
   auto& fields = header.fields;  // name -> value, line
   auto field = [&](const std::string& name, bool required) {
@@ -264,7 +267,7 @@ ScalarVolume load_nrrd(const std::string& path) {
   std::string data_where = where;
   if (!detached_name.empty()) {
     const std::string data_path = resolved_data_path(path, detached_name);
-    detached = read_file(data_path, f, "NRRD data");
+    detached = read_file(data_path, f, "NRRD data", kMaxNrrdBytes);
     data = &detached;
     data_start = 0;
     data_where = where + "data file '" + data_path + "': ";

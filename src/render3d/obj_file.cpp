@@ -17,6 +17,8 @@ namespace geolens {
 
 namespace {
 
+constexpr size_t kMaxObjBytes = size_t(512) << 20;  ///< about ten million triangles
+
 /// The first line of tinyobjloader's message, without its trailing newline.
 std::string first_line(const std::string& text) {
   const size_t end = text.find('\n');
@@ -57,7 +59,7 @@ void check_numbers(const std::string& text, const std::string& path) {
 
 TriangleMesh load_obj(const std::string& path) {
   const char* f = "load_obj";
-  const std::string text = read_file(path, f, "OBJ");
+  const std::string text = read_file(path, f, "OBJ", kMaxObjBytes);
   check_numbers(text, path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

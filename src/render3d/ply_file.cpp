@@ -15,6 +15,8 @@ namespace geolens {
 
 namespace {
 
+constexpr size_t kMaxPlyBytes = size_t(512) << 20;  ///< about twenty million binary triangles
+
 enum class Format { ascii, little_endian, big_endian };
 
 using detail::VoxelType;
@@ -104,7 +106,7 @@ class BodyReader {
 
 TriangleMesh load_ply(const std::string& path) {
   const char* f = "load_ply";
-  const std::string text = read_file(path, f, "PLY");
+  const std::string text = read_file(path, f, "PLY", kMaxPlyBytes);
   const std::string where = "'" + path + "': ";
 
   // The header: lines up to "end_header".

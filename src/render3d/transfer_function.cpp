@@ -69,7 +69,8 @@ TransferFunction transfer_preset(const std::string& name, const ScalarVolume& vo
 
 TransferFunction load_transfer_table(const std::string& path) {
   const char* f = "load_transfer_table";
-  const std::string text = read_file(path, f, "transfer table");
+  constexpr size_t kMaxTableBytes = size_t(16) << 20;  // a table is a few lines
+  const std::string text = read_file(path, f, "transfer table", kMaxTableBytes);
   std::istringstream lines(text);
   std::string line;
   std::vector<TransferPoint> points;

@@ -25,6 +25,7 @@ namespace geolens {
 namespace {
 
 constexpr const char* kFn = "open_level_list";
+constexpr size_t kMaxListBytes = size_t(16) << 20;  ///< a line per level
 
 /// One image of the list.
 struct ListedImage {
@@ -301,7 +302,7 @@ SourceFile open_level_list(const std::string& path, const SourceFileOptions& opt
           "the frame size must be >= 0, got " + std::to_string(options.width) + " x " +
               std::to_string(options.height));
   std::vector<ListedImage> images;
-  for (ListedImage image : listed_images(read_file(path, kFn, "level list"), path)) {
+  for (ListedImage image : listed_images(read_file(path, kFn, "level list", kMaxListBytes), path)) {
     const int number = image.line;
     std::string why;
     std::tie(image.width, image.height) = image_size(image.path, why);

@@ -20,6 +20,7 @@ namespace {
 // The largest width, radius or font size a style may give, pixels: a radius of 1e300 hung the
 // renderer, a huge width filled the frame at any zoom.
 constexpr double kMaxStylePixels = 1000;
+constexpr size_t kMaxStyleBytes = size_t(16) << 20;  ///< a style is a few KB of JSON
 
 using Json = nlohmann::json;
 
@@ -258,7 +259,7 @@ MapStyle parse_map_style(const std::string& text, const std::string& name) {
 }
 
 MapStyle read_map_style(const std::string& path) {
-  return parse_map_style(read_file(path, "read_map_style", "style"), path);
+  return parse_map_style(read_file(path, "read_map_style", "style", kMaxStyleBytes), path);
 }
 
 }  // namespace geolens

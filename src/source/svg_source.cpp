@@ -20,6 +20,7 @@ namespace geolens {
 namespace {
 
 constexpr int kMaxFrame = 16384;
+constexpr size_t kMaxSvgBytes = size_t(256) << 20;
 // librsvg draws the whole document for every tile (clipped to it, not culled): the cost of a tile
 // is mostly the document's, not the tile's area, so tiles are large (bench: a zoom-3 view of a
 // text page, 2.6 s in 64 tiles of 256, 0.96 s in 22 of 512, 0.52 s in 10 of 1024).
@@ -124,7 +125,7 @@ std::pair<double, double> intrinsic_size(RsvgHandle* handle) {
 }  // namespace
 
 SourceFile open_svg(const std::string& path, const SourceFileOptions& options) {
-  std::string bytes = read_file(path, "open_svg", "SVG");
+  std::string bytes = read_file(path, "open_svg", "SVG", kMaxSvgBytes);
   HandlePtr handle = parse(bytes, path);
   const auto [svg_width, svg_height] = intrinsic_size(handle.get());
 
