@@ -4,13 +4,12 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "geolens/io/file_io.h"
 
 namespace geolens {
 namespace {
@@ -173,11 +172,8 @@ std::vector<Eigen::Vector2d> simplify_loop(const std::vector<Eigen::Vector2d>& l
 }
 
 std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
-  std::error_code error;
-  require(!std::filesystem::is_directory(path, error), "read_polygon_file",
-          "'" + path + "' is a directory, not a polygon file");
-  std::ifstream in(path);
-  require(bool(in), "read_polygon_file", "cannot open '" + path + "'");
+  constexpr size_t kMaxPolygonBytes = size_t(64) << 20;  // a few million vertices
+  std::istringstream in(read_file(path, "read_polygon_file", "polygon", kMaxPolygonBytes));
   std::vector<Eigen::Vector2d> vertices;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
@@ -200,7 +196,6 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
                 quoted_line(line) + "\"");
     vertices.push_back(v);
   }
-  require(!in.bad(), "read_polygon_file", "error while reading '" + path + "'");
   if (vertices.size() > 1 && vertices.back() == vertices.front()) vertices.pop_back();
   return vertices;
 }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/geometry/polygon.h"
 #include "geolens/io/geojson.h"
 #include "geolens/io/point_csv.h"
 #include "geolens/render3d/nrrd_file.h"
@@ -37,6 +38,7 @@ TEST_F(ReadBounds, EveryWholeFileReaderRefusesAFileOverItsBoundUnread) {
   const Bounded readers[] = {
       {"p.csv", "read_point_csv", "CSV", 256, [](auto& p) { read_point_csv(p); }},
       {"m.geojson", "read_geojson", "GeoJSON", 64, [](auto& p) { read_geojson(p); }},
+      {"p.txt", "read_polygon_file", "polygon", 64, [](auto& p) { read_polygon_file(p); }},
       {"s.json", "read_map_style", "style", 16, [](auto& p) { read_map_style(p); }},
       {"l.levels", "open_level_list", "level list", 16, [](auto& p) { open_level_list(p); }},
       {"t.txt", "load_transfer_table", "transfer table", 16,
