@@ -37,6 +37,7 @@ struct Work {
   std::vector<uint8_t> sides;
   std::vector<char> locked;
   std::vector<int> curve_of;  // the curve a vertex was placed on, or -1
+  Eigen::AlignedBox2d box;    // the mesh's extent: its sides' coordinates
 
   double area2(const Triangle& t) const {
     return cross(V[size_t(t[1])] - V[size_t(t[0])], V[size_t(t[2])] - V[size_t(t[0])]);
@@ -61,7 +62,13 @@ struct Work {
     return true;
   }
 
-  int add_vertex(const Eigen::Vector2d& p, uint8_t side_flags, int curve) {
+  // A vertex on a side is placed on it exactly (a crossing computed there was 1e-13 px off, and
+  // the flattener, which holds it on the side, then refused a start the ring kept on it).
+  int add_vertex(Eigen::Vector2d p, uint8_t side_flags, int curve) {
+    if (side_flags & kLeft) p.x() = box.min().x();
+    if (side_flags & kRight) p.x() = box.max().x();
+    if (side_flags & kTop) p.y() = box.min().y();
+    if (side_flags & kBottom) p.y() = box.max().y();
     V.push_back(p);
     sides.push_back(side_flags);
     locked.push_back(1);
@@ -590,6 +597,8 @@ PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& cu
   for (const Triangle& t : w.F) area += 0.5 * std::abs(w.area2(t));
   w.on_curve = 1e-6 * std::sqrt(2 * area / double(std::max<size_t>(w.F.size(), 1)));
   w.sides = mesh.sides;
+  w.box = Eigen::AlignedBox2d(mesh.V.colwise().minCoeff().transpose(),
+                              mesh.V.colwise().maxCoeff().transpose());
   w.locked.resize(w.V.size());
   for (size_t i = 0; i < w.V.size(); ++i) w.locked[i] = w.sides[i] != 0;
   w.curve_of.assign(w.V.size(), -1);
