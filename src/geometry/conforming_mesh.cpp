@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -371,8 +372,10 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
         // neighbour's, where f has none: x on a - b, a triangle of three points of a straight
         // curve, which the flip removes while keeping the curve's edges a - x and x - b).
         const Triangle first = {a, y, x}, second = {y, b, x};
+        // (x within on_curve of a - b: three points of a curve placed 1.5e-10 px off a line,
+        // whose sign the flattening then turned.)
         const bool flat =
-            std::abs(w.area2(t)) <= 1e-12 * (w.V[size_t(a)] - w.V[size_t(b)]).squaredNorm();
+            std::abs(w.area2(t)) <= w.on_curve * (w.V[size_t(a)] - w.V[size_t(b)]).norm();
         const double sign = flat ? w.area2(w.F[size_t(g)]) : w.area2(t);
         if (!(w.area2(first) * sign > 0 && w.area2(second) * sign > 0)) continue;
         auto smallest = [&](const Triangle& u) {
@@ -381,8 +384,9 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
         };
         const double before = std::min(smallest(t), smallest(w.F[size_t(g)]));
         if (std::min(smallest(first), smallest(second)) <= before) continue;
-        if ((apex[size_t(a)] && angle(a, y, x) > kMaxApexAngle * (1 + 1e-9)) ||
-            (apex[size_t(b)] && angle(b, y, x) > kMaxApexAngle * (1 + 1e-9)))
+        // (A flat f's flip spans at a and b what g spanned there: x is on a - b.)
+        if (!flat && ((apex[size_t(a)] && angle(a, y, x) > kMaxApexAngle * (1 + 1e-9)) ||
+                      (apex[size_t(b)] && angle(b, y, x) > kMaxApexAngle * (1 + 1e-9))))
           continue;
         if ((!flat && along_curve(w, curves, a, b)) || w.sides[size_t(a)] || w.sides[size_t(b)] ||
             w.sides[size_t(x)] || w.sides[size_t(y)])
@@ -527,6 +531,72 @@ void refine_where_bent(Work& w, const std::vector<MeshCurve>& curves,
   }
 }
 
+// Merges the vertices that an edge joins nearer than on_curve (two curves crossing within it of
+// each other, or a crossing that near a vertex already on another curve) into the older, and
+// drops the triangles between them: they were a millionth of a cell across, and a measure of
+// the warp read them as flipped. A merge that would turn a triangle left between other vertices,
+// or join a vertex on a side to one that is not on it, is not made. The older is kept, so the
+// input's vertices keep their indices.
+void merge_coincident(Work& w) {
+  std::vector<int> into(w.V.size());
+  std::iota(into.begin(), into.end(), 0);
+  std::vector<std::vector<int>> members(w.V.size());  // of each root, the vertices merged into it
+  for (size_t v = 0; v < w.V.size(); ++v) members[v] = {int(v)};
+  auto root = [&](int v) {
+    while (into[size_t(v)] != v) v = into[size_t(v)];
+    return v;
+  };
+  // Whether merging root b into root a keeps every triangle at b that is left counter-clockwise.
+  auto keeps_orientation = [&](int a, int b) {
+    for (int m : members[size_t(b)])
+      for (int f : w.around[size_t(m)]) {
+        Triangle u;
+        for (size_t k = 0; k < 3; ++k) {
+          const int r = root(w.F[size_t(f)][k]);
+          u[k] = r == b ? a : r;
+        }
+        if (u[0] != u[1] && u[1] != u[2] && u[2] != u[0] && !(w.area2(u) > 0)) return false;
+      }
+    return true;
+  };
+  bool merged = false;
+  for (const Triangle& t : w.F)
+    for (size_t k = 0; k < 3; ++k) {
+      int a = root(t[k]), b = root(t[(k + 1) % 3]);
+      if (a == b || w.sides[size_t(a)] != w.sides[size_t(b)] ||
+          (w.V[size_t(a)] - w.V[size_t(b)]).norm() > w.on_curve)
+        continue;
+      if (a > b) std::swap(a, b);
+      if (!keeps_orientation(a, b)) continue;
+      into[size_t(b)] = a;
+      members[size_t(a)].insert(members[size_t(a)].end(), members[size_t(b)].begin(),
+                                members[size_t(b)].end());
+      if (w.curve_of[size_t(a)] < 0) w.curve_of[size_t(a)] = w.curve_of[size_t(b)];
+      merged = true;
+    }
+  if (!merged) return;
+  std::vector<int> index(w.V.size(), -1);
+  size_t kept = 0;
+  for (size_t v = 0; v < w.V.size(); ++v) {
+    if (root(int(v)) != int(v)) continue;
+    index[v] = int(kept);
+    w.V[kept] = w.V[v];
+    w.sides[kept] = w.sides[v];
+    w.curve_of[kept] = w.curve_of[v];
+    ++kept;
+  }
+  w.V.resize(kept);
+  w.sides.resize(kept);
+  w.curve_of.resize(kept);
+  std::vector<Triangle> faces;
+  for (const Triangle& t : w.F) {
+    const Triangle u = {index[size_t(root(t[0]))], index[size_t(root(t[1]))],
+                        index[size_t(root(t[2]))]};
+    if (u[0] != u[1] && u[1] != u[2] && u[2] != u[0]) faces.push_back(u);
+  }
+  w.F = std::move(faces);
+}
+
 }  // namespace
 
 MeshCurve circle_curve(const Eigen::Vector2d& center, double radius) {
@@ -618,6 +688,7 @@ PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& cu
   fan_out(w, corners);
   if (refine.map) refine_where_bent(w, curves, refine);
   flip_slivers(w, curves, corners);
+  merge_coincident(w);
   PlanarMesh out;
   out.V.resize(Eigen::Index(w.V.size()), 2);
   for (size_t i = 0; i < w.V.size(); ++i) out.V.row(Eigen::Index(i)) = w.V[i].transpose();
