@@ -2,7 +2,9 @@
 # Checks geolens as an installed package: builds it shared and static (Release, no tests, no
 # benchmarks), installs each into a prefix of its own, then builds examples/consumer against each
 # prefix twice, with find_package(geolens CONFIG) and with pkg-config alone, runs the four
-# programs and the installed CLI, and checks that all four print the same. Assumes
+# programs and the installed CLI, and checks that all four print the same; the same for
+# examples/drag_session against the lens engine alone (geolens::lens, geolens-lens.pc), which must
+# name and load none of the libraries the readers and renderers need. Assumes
 # scripts/setup.sh has installed the packages; everything is built in a temporary folder, removed
 # at the end (GEOLENS_PACKAGE_KEEP=1 keeps it). Stops at the first error, naming the step.
 set -euo pipefail
@@ -66,6 +68,31 @@ for kind in shared static; do
     fail "$kind: the pkg-config consumer failed"
   unset PKG_CONFIG_PATH
 
+  step "$kind: the lens engine alone (examples/drag_session), with find_package and pkg-config"
+  run "drag-cmake-$kind" cmake -S "$root/examples/drag_session" -B "$work/drag-$kind" \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix"
+  run "drag-cmake-build-$kind" cmake --build "$work/drag-$kind" -j"$jobs"
+  export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+  lens_flags=$("${query[@]}" geolens-lens) || fail "$kind: ${query[*]} geolens-lens"
+  echo "${query[*]} geolens-lens: $lens_flags"
+  unset PKG_CONFIG_PATH
+  # shellcheck disable=SC2086  # the flags are words
+  run "drag-pkg-config-$kind" g++ -std=c++20 -O2 "$root/examples/drag_session/main.cpp" \
+    -o "$work/drag-pc-$kind" $lens_flags -Wl,-rpath,"$libdir"
+  outside="spng|jpeg|cairo|rsvg|nifti|znz|tinyobj|libz\.|-lz\b|nlohmann|stb"
+  if grep -Eq "$outside" <<<"$lens_flags"; then fail "$kind: geolens-lens names $lens_flags"; fi
+  for exe in "$work/drag-$kind/drag_session" "$work/drag-pc-$kind"; do
+    "$exe" > "$work/drag-out-$kind-$(basename "$exe").txt" || fail "$exe failed"
+    libraries=$(ldd "$exe")
+    if grep -Eq "$outside|libgeolens\.so" <<<"$libraries"; then
+      fail "$exe, which solves lenses only, loads: $(grep -E "$outside|libgeolens\.so" <<<"$libraries")"
+    fi
+    if [ "$kind" = shared ]; then
+      grep -q "libgeolens_lens\.so.* => $prefix/" <<<"$libraries" ||
+        fail "$exe does not load libgeolens_lens.so from $prefix"
+    fi
+  done
+
   # The shared consumers load the installed library; the static ones need none.
   for exe in "$work/consumer-$kind/consumer" "$work/consumer-pc-$kind"; do
     libraries=$(ldd "$exe")
@@ -81,6 +108,11 @@ done
 step "the four consumers agree"
 for out in "$work"/out-*.txt; do
   cmp -s "$out" "$work/out-cmake-shared.txt" || fail "$(basename "$out") differs from out-cmake-shared.txt"
+done
+step "the four drag_session builds agree"
+cat "$work/drag-out-shared-drag_session.txt"
+for out in "$work"/drag-out-*.txt; do
+  cmp -s "$out" "$work/drag-out-shared-drag_session.txt" || fail "$(basename "$out") differs"
 done
 step "installed (shared prefix)"
 (cd "$work/prefix-shared" && find . -type f -o -type l | sort | grep -v '^./include/geolens/.*\.h$')
