@@ -22,6 +22,7 @@
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_worker.h"
+#include "geolens/render/render.h"
 #include "geolens/source/source_file.h"
 
 namespace geolens::view {

@@ -15,6 +15,7 @@
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/measure/distortion.h"
+#include "geolens/render/render.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_map.h"
 #include "lens_solver.h"

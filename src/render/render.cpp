@@ -10,6 +10,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/core/thread_pool.h"
+#include "geolens/render/annotate.h"
 #include "render/rasterize.h"
 #include "source/with_channels.h"
 
@@ -383,6 +384,16 @@ Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& op
     });
   });
   return out;
+}
+
+Image render(const WarpMesh& warp, const SourceFile& file, RenderOptions options) {
+  options.source_scale = file.scale;
+  options.level_band = file.level_band;
+  Image image = render(warp, *file.source, options);
+  if (!file.overlay) return image;
+  if (image.channels < 3) image = to_rgb(image);
+  file.overlay(image, framed_warp_map(warp, options.width, options.height));
+  return image;
 }
 
 }  // namespace geolens

@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include "geolens/io/image.h"
-#include "geolens/render/annotate.h"
 #include "geolens/render3d/nrrd_file.h"
 #include "geolens/source/level_list.h"
 #include "geolens/source/mesh_source.h"
@@ -14,7 +13,6 @@
 #include "geolens/source/vector_map.h"
 #include "geolens/source/volume_source.h"
 #include "geolens/source/xyz_tiles.h"
-#include "geolens/warp/warp_map.h"
 
 namespace geolens {
 
@@ -58,16 +56,6 @@ SourceFile open_source(const std::string& path, const SourceFileOptions& options
   if (ext == ".obj" || ext == ".ply") return open_mesh_source(path, options);
   if (ext == ".nii" || ext == ".nii.gz" || ext == ".nrrd") return open_volume_source(path, options);
   return image_source(load_image(path));
-}
-
-Image render(const WarpMesh& warp, const SourceFile& file, RenderOptions options) {
-  options.source_scale = file.scale;
-  options.level_band = file.level_band;
-  Image image = render(warp, *file.source, options);
-  if (!file.overlay) return image;
-  if (image.channels < 3) image = to_rgb(image);
-  file.overlay(image, framed_warp_map(warp, options.width, options.height));
-  return image;
 }
 
 }  // namespace geolens

@@ -6,6 +6,7 @@
 
 #include "geolens/eval/comparison.h"
 #include "geolens/io/image.h"
+#include "geolens/render/render.h"
 #include "geolens/source/source_file.h"
 
 namespace geolens {

@@ -7,6 +7,7 @@
 #include "geolens/io/image.h"
 #include "geolens/source/mip_pyramid.h"  // the usual source; callers build it next to render()
 #include "geolens/source/source.h"
+#include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
@@ -48,5 +49,11 @@ struct RenderOptions {
 /// the worker threads at once; so every source renders alike, and an in-memory MipPyramid
 /// costs no copy.
 Image render(const WarpMesh& mesh, const Source& source, const RenderOptions& options);
+
+/// `warp` (its source in frame pixels) rendered from `file` as every tool shows it: from
+/// file.source at file.scale and file.level_band (which replace those of `options`) at
+/// options.width x options.height, then file.overlay drawn over it (the output made RGB first).
+/// Throws as render() does.
+Image render(const WarpMesh& warp, const SourceFile& file, RenderOptions options);
 
 }  // namespace geolens

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "geolens/io/image.h"
-#include "geolens/render/render.h"
 #include "geolens/source/map_frame.h"
 #include "geolens/source/source.h"
+#include "geolens/warp/warp_map.h"
 
 namespace geolens {
 
@@ -69,11 +69,5 @@ SourceFile open_source(const std::string& path, const SourceFileOptions& options
 /// for other kinds (a tile folder is a folder: every file in it is read). For the checks a tool
 /// makes before its work, so that no output overwrites one of them.
 std::vector<std::string> source_parts(const std::string& path);
-
-/// `warp` (its source in frame pixels) rendered from `file` as every tool shows it: from
-/// file.source at file.scale and file.level_band (which replace those of `options`) at
-/// options.width x options.height, then file.overlay drawn over it (the output made RGB first).
-/// Throws as render() does.
-Image render(const WarpMesh& warp, const SourceFile& file, RenderOptions options);
 
 }  // namespace geolens
