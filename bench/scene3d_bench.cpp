@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "geolens/core/thread_pool.h"
-#include "geolens/render3d/mesh_renderer.h"
-#include "geolens/render3d/volume_renderer.h"
-#include "geolens/source/mesh_source.h"
-#include "geolens/source/volume_source.h"
+#include "core/thread_pool.h"
+#include "render3d/mesh_renderer.h"
+#include "render3d/volume_renderer.h"
+#include "source/mesh_source.h"
+#include "source/volume_source.h"
 
 namespace {
 

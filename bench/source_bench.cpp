@@ -12,7 +12,7 @@
 #include <string>
 #include <system_error>
 
-#include "geolens/core/thread_pool.h"
+#include "core/thread_pool.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/lens_session.h"

@@ -11,9 +11,9 @@
 
 #include "geolens/io/geojson.h"
 #include "geolens/render/render.h"
-#include "geolens/source/svg_source.h"
-#include "geolens/source/vector_map.h"
 #include "geolens/warp/warp_mesh.h"
+#include "source/svg_source.h"
+#include "source/vector_map.h"
 
 namespace {
 

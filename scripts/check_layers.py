@@ -6,7 +6,8 @@ Usage: check_layers.py [ROOT]   (default: the repository this script is in)
 The table's rows name a layer (`core/`, `lens/`, ...) and, in its last column, the layers it may
 include ("—" for none, "all of the above" for every row above it). A file of a layer
 (include/geolens/LAYER/ or src/LAYER/) may include its own layer's headers, public
-("geolens/LAYER/x.h") or private ("LAYER/x.h" from src/), and those of the layers its row names.
+("geolens/LAYER/x.h") or private ("LAYER/x.h" from src/), and those of the layers its row names;
+a public header includes public headers only (the private ones are not installed).
 Any other include of a layer's header, or a folder of include/geolens/ or src/ without a row,
 is printed as FILE:LINE and fails the check (exit 1).
 """
@@ -56,10 +57,14 @@ def main():
                 path = os.path.join(folder, name)
                 with open(path, errors="replace") as f:
                     for number, line in enumerate(f, 1):
-                        include = re.match(r'\s*#\s*include\s+"(?:geolens/)?(\w+)/', line)
-                        if not include or include.group(1) not in allowed:
+                        include = re.match(r'\s*#\s*include\s+"(geolens/)?(\w+)/', line)
+                        if not include or include.group(2) not in allowed:
                             continue
-                        other = include.group(1)
+                        other = include.group(2)
+                        if base.endswith("geolens") and not include.group(1):
+                            problems.append(f"{os.path.relpath(path, root)}:{number}: a public "
+                                            f"header includes a private one ({line.strip()}), "
+                                            "which is not installed")
                         if other != layer and other not in allowed[layer]:
                             problems.append(f"{os.path.relpath(path, root)}:{number}: {layer}/ "
                                             f"includes {other}/ ({line.strip()})")

@@ -4,7 +4,8 @@
 # prefix twice, with find_package(geolens CONFIG) and with pkg-config alone, runs the four
 # programs and the installed CLI, and checks that all four print the same; the same for
 # examples/drag_session against the lens engine alone (geolens::lens, geolens-lens.pc), which must
-# name and load none of the libraries the readers and renderers need. Assumes
+# name and load none of the libraries the readers and renderers need; and every installed header
+# compiles alone. Assumes
 # scripts/setup.sh has installed the packages; everything is built in a temporary folder, removed
 # at the end (GEOLENS_PACKAGE_KEEP=1 keeps it). Stops at the first error, naming the step.
 set -euo pipefail
@@ -114,6 +115,17 @@ cat "$work/drag-out-shared-drag_session.txt"
 for out in "$work"/drag-out-*.txt; do
   cmp -s "$out" "$work/drag-out-shared-drag_session.txt" || fail "$(basename "$out") differs"
 done
+step "every installed header compiles alone against the installed prefix"
+# A public header that includes a private one (not installed) or misses an include of its own
+# fails here; the flags are the package's own (pkg-config).
+cflags=$(PKG_CONFIG_PATH="$work/prefix-shared/lib/pkgconfig" pkg-config --cflags geolens)
+(cd "$work/prefix-shared/include" && find geolens -name '*.h' | sort) >"$work/headers.txt"
+# shellcheck disable=SC2086 # the flags are words
+xargs -P "$jobs" -I{} sh -c 'echo "#include \"{}\"" | c++ -std=c++20 -fsyntax-only $0 -x c++ - ||
+  { echo "package_check: {} does not compile alone" >&2; exit 255; }' "$cflags" <"$work/headers.txt" ||
+  fail "an installed header does not compile alone"
+echo "$(wc -l <"$work/headers.txt") headers, each compiled alone"
+
 step "installed (shared prefix)"
 (cd "$work/prefix-shared" && find . -type f -o -type l | sort | grep -v '^./include/geolens/.*\.h$')
 echo "and $(find "$work/prefix-shared/include/geolens" -name '*.h' | wc -l) headers in include/geolens/"

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <functional>
 
-#include "geolens/core/thread_pool.h"
+#include "core/thread_pool.h"
 
 namespace geolens {
 

@@ -9,8 +9,8 @@
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/classic_lens.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/lens/lens_method.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

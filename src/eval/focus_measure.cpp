@@ -8,8 +8,8 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/warp/warp_map.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

@@ -8,9 +8,9 @@
 #include "geolens/core/errors.h"
 #include "geolens/eval/focus_measure.h"
 #include "geolens/lens/classic_lens.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/render/heatmap.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

@@ -1,7 +1,7 @@
 #include "eval/lens_json.h"
 
-#include "geolens/lens/focus_lens.h"
 #include "geolens/lens/unread_options.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

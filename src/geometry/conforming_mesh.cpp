@@ -1,4 +1,4 @@
-#include "geolens/geometry/conforming_mesh.h"
+#include "geometry/conforming_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
+#include "geometry/polygon.h"
 #include "numerics/bracketed_root.h"
 
 namespace geolens {

@@ -1,4 +1,4 @@
-#include "geolens/geometry/distance_field.h"
+#include "geometry/distance_field.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "geolens/geometry/mask_contour.h"
+#include "geometry/mask_contour.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
+#include "geometry/polygon.h"
 
 namespace geolens {
 namespace {

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/distance_field.h"
-#include "geolens/geometry/mask_contour.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/geometry/roi.h"
 #include "geolens/io/image.h"
+#include "geometry/distance_field.h"
+#include "geometry/mask_contour.h"
+#include "geometry/polygon.h"
 #include "geometry/roi_impl.h"
 
 namespace geolens {

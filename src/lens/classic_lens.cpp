@@ -9,9 +9,9 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/measure/distortion.h"
+#include "geometry/conforming_mesh.h"
 #include "lens/zoom_match.h"
 
 namespace geolens {

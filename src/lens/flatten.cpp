@@ -9,12 +9,12 @@
 #include <numeric>
 
 #include "core/parallel.h"
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/texture_map.h"
-#include "geolens/numerics/sparse_solver.h"
-#include "geolens/numerics/svd2.h"
+#include "numerics/sparse_solver.h"
+#include "numerics/svd2.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/lens/focus_lens.h"
+#include "lens/focus_lens.h"
 
 #include <algorithm>
 #include <array>

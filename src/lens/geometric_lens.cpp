@@ -8,12 +8,12 @@
 #include <string>
 #include <utility>
 
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/lens/classic_lens.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
 #include "lens/calibration.h"
+#include "lens/focus_lens.h"
 #include "lens/framing.h"
 #include "lens/shared_room.h"
 #include "lens/solve_cache.h"

@@ -5,8 +5,8 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

@@ -4,8 +4,8 @@
 #include <cstdlib>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/io/image.h"
+#include "geometry/polygon.h"
 
 namespace geolens {
 

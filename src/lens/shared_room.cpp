@@ -7,7 +7,7 @@
 #include <optional>
 #include <tuple>
 
-#include "geolens/lens/focus_lens.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/numerics/sparse_solver.h"
+#include "numerics/sparse_solver.h"
 
 namespace geolens {
 

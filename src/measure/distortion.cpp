@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/numerics/svd2.h"
+#include "numerics/svd2.h"
 
 namespace geolens {
 

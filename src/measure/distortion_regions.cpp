@@ -8,7 +8,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/numerics/svd2.h"
+#include "numerics/svd2.h"
 
 namespace geolens {
 

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/io/geojson.h"
 #include "geolens/render/heatmap.h"
+#include "geometry/polygon.h"
 
 namespace geolens {
 

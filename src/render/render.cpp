@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/render/annotate.h"
 #include "render/rasterize.h"
 #include "source/with_channels.h"

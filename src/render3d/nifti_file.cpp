@@ -1,4 +1,4 @@
-#include "geolens/render3d/nifti_file.h"
+#include "render3d/nifti_file.h"
 
 #include <nifti1_io.h>
 #include <zlib.h>

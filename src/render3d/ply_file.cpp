@@ -1,4 +1,4 @@
-#include "geolens/render3d/ply_file.h"
+#include "render3d/ply_file.h"
 
 #include <bit>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "geolens/render3d/transfer_function.h"
+#include "render3d/transfer_function.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "geolens/render3d/volume_renderer.h"
+#include "render3d/volume_renderer.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/source/downsample.h"
+#include "source/downsample.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "geolens/source/level_list.h"
+#include "source/level_list.h"
 
 #include <algorithm>
 #include <atomic>
@@ -17,8 +17,8 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
-#include "geolens/source/downsample.h"
 #include "source/convert_channels.h"
+#include "source/downsample.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/source/map_labels.h"
+#include "source/map_labels.h"
 
 #include <cairo.h>
 

@@ -1,4 +1,4 @@
-#include "geolens/source/mesh_source.h"
+#include "source/mesh_source.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,8 +7,8 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/render3d/obj_file.h"
-#include "geolens/render3d/ply_file.h"
-#include "geolens/source/scene_tiles.h"
+#include "render3d/ply_file.h"
+#include "source/scene_tiles.h"
 
 namespace geolens {
 

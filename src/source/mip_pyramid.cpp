@@ -6,7 +6,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/downsample.h"
+#include "source/downsample.h"
 #include "source/with_channels.h"
 
 namespace geolens {

@@ -1,4 +1,4 @@
-#include "geolens/source/scene_tiles.h"
+#include "source/scene_tiles.h"
 
 #include <atomic>
 #include <chrono>

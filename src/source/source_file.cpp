@@ -6,13 +6,13 @@
 
 #include "geolens/io/image.h"
 #include "geolens/render3d/nrrd_file.h"
-#include "geolens/source/level_list.h"
-#include "geolens/source/mesh_source.h"
 #include "geolens/source/mip_pyramid.h"
-#include "geolens/source/svg_source.h"
-#include "geolens/source/vector_map.h"
-#include "geolens/source/volume_source.h"
-#include "geolens/source/xyz_tiles.h"
+#include "source/level_list.h"
+#include "source/mesh_source.h"
+#include "source/svg_source.h"
+#include "source/vector_map.h"
+#include "source/volume_source.h"
+#include "source/xyz_tiles.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/source/svg_source.h"
+#include "source/svg_source.h"
 
 #include <librsvg/rsvg.h>
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/downsample.h"
+#include "source/downsample.h"
 
 namespace geolens {
 

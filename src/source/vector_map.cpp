@@ -1,4 +1,4 @@
-#include "geolens/source/vector_map.h"
+#include "source/vector_map.h"
 
 #include <cairo.h>
 
@@ -17,9 +17,9 @@
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
 #include "geolens/source/map_frame.h"
-#include "geolens/source/map_labels.h"
 #include "geolens/source/tiled_source.h"
 #include "source/cairo_tile.h"
+#include "source/map_labels.h"
 
 namespace geolens {
 

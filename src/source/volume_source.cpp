@@ -1,4 +1,4 @@
-#include "geolens/source/volume_source.h"
+#include "source/volume_source.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "geolens/core/errors.h"
-#include "geolens/render3d/nifti_file.h"
 #include "geolens/render3d/nrrd_file.h"
-#include "geolens/source/scene_tiles.h"
+#include "render3d/nifti_file.h"
+#include "source/scene_tiles.h"
 
 namespace geolens {
 

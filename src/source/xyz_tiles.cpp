@@ -1,4 +1,4 @@
-#include "geolens/source/xyz_tiles.h"
+#include "source/xyz_tiles.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/downsample.h"
 #include "geolens/source/tiled_source.h"
 #include "source/convert_channels.h"
+#include "source/downsample.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/warp/densify.h"
+#include "warp/densify.h"
 
 #include <cmath>
 #include <string>

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/warp/densify.h"
+#include "warp/densify.h"
 
 namespace geolens {
 

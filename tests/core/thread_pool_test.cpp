@@ -1,4 +1,4 @@
-#include "geolens/core/thread_pool.h"
+#include "core/thread_pool.h"
 
 #include <gtest/gtest.h>
 

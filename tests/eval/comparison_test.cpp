@@ -23,7 +23,7 @@
 #include "geolens/eval/footprint_sweep.h"
 #include "geolens/eval/run_stats.h"
 #include "geolens/lens/classic_lens.h"
-#include "geolens/lens/focus_lens.h"
+#include "lens/focus_lens.h"
 #include "support/lens_options.h"
 
 namespace geolens {

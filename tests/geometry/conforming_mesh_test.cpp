@@ -1,4 +1,4 @@
-#include "geolens/geometry/conforming_mesh.h"
+#include "geometry/conforming_mesh.h"
 
 #include <gtest/gtest.h>
 

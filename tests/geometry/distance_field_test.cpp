@@ -1,4 +1,4 @@
-#include "geolens/geometry/distance_field.h"
+#include "geometry/distance_field.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
+#include "geometry/polygon.h"
 
 namespace geolens {
 namespace {

@@ -1,4 +1,4 @@
-#include "geolens/geometry/mask_contour.h"
+#include "geometry/mask_contour.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "geolens/geometry/polygon.h"
+#include "geometry/polygon.h"
 
 #include <gtest/gtest.h>
 

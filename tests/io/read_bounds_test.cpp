@@ -9,16 +9,16 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/io/geojson.h"
 #include "geolens/io/point_csv.h"
 #include "geolens/render3d/nrrd_file.h"
 #include "geolens/render3d/obj_file.h"
-#include "geolens/render3d/ply_file.h"
-#include "geolens/render3d/transfer_function.h"
-#include "geolens/source/level_list.h"
 #include "geolens/source/map_style.h"
-#include "geolens/source/svg_source.h"
+#include "geometry/polygon.h"
+#include "render3d/ply_file.h"
+#include "render3d/transfer_function.h"
+#include "source/level_list.h"
+#include "source/svg_source.h"
 #include "support/scratch_folder.h"
 
 namespace geolens {

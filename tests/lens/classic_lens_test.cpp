@@ -10,8 +10,8 @@
 #include <numbers>
 
 #include "geolens/core/errors.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/measure/distortion.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 namespace {

@@ -1,7 +1,7 @@
 // The focus lens: the region given is magnified as a whole, uniformly and without rotation, the
 // context gives way within the footprint, and nothing beyond it moves.
 
-#include "geolens/lens/focus_lens.h"
+#include "lens/focus_lens.h"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,10 @@
 #include <random>
 #include <string>
 
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/eval/focus_measure.h"
 #include "geolens/eval/footprint_sweep.h"
-#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/classic_lens.h"
@@ -25,6 +24,7 @@
 #include "geolens/lens/lens_session.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_map.h"
+#include "geometry/conforming_mesh.h"
 
 namespace geolens {
 namespace {

@@ -18,11 +18,11 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/geometry/polygon.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/measure/distortion.h"
+#include "geometry/polygon.h"
 
 namespace geolens {
 namespace {

@@ -1,4 +1,4 @@
-#include "geolens/numerics/sparse_solver.h"
+#include "numerics/sparse_solver.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "geolens/numerics/svd2.h"
+#include "numerics/svd2.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Tests scripts/check_layers.py: the repository passes, and a copy with one include against the
-layer table, a folder without a row or a row naming a layer below it fails, naming the cause."""
+layer table, a public header including a private one, a folder without a row or a row
+naming a layer below it fails, naming the cause."""
 import os
 import shutil
 import subprocess
@@ -59,6 +60,16 @@ def main():
 
     with tempfile.TemporaryDirectory() as scratch:
         copy_tree(scratch)
+        # A public header may not include a private one, even of its own layer.
+        append(os.path.join(scratch, "include", "geolens", "lens", "lens_session.h"),
+               '#include "lens/focus_lens.h"\n')
+        code, out = run(scratch)
+        expect(code == 1 and "include/geolens/lens/lens_session.h" in out and
+               "a public header includes a private one" in out,
+               f"a public header including a private one passes:\n{out}")
+
+    with tempfile.TemporaryDirectory() as scratch:
+        copy_tree(scratch)
         os.makedirs(os.path.join(scratch, "src", "extras"))
         code, out = run(scratch)
         expect(code == 1 and "src/extras/: no row" in out, f"a folder without a row passes:\n{out}")
@@ -76,7 +87,7 @@ def main():
         code, out = run(scratch)
         expect(code != 0 and "numerics/ names ['lens']" in out,
                f"a row naming a layer below it passes:\n{out}")
-    print("check_layers_test: 5 cases passed")
+    print("check_layers_test: 6 cases passed")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 // The level list: each level read from its image or downsampled, lazily, with a bounded cache;
 // the size rules and their refusals; a magnified region rendered from the finest level.
 
-#include "geolens/source/level_list.h"
+#include "source/level_list.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include "geolens/core/errors.h"
 #include "geolens/io/image.h"
 #include "geolens/render/render.h"
-#include "geolens/source/downsample.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"
+#include "source/downsample.h"
 #include "support/scratch_folder.h"
 #include "support/test_data.h"
 

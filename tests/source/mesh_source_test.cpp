@@ -2,7 +2,7 @@
 // are renders of their region at their level's resolution (no seams), a zoom-3 focus is as
 // sharp as a direct 3x render, and bad files are refused with one line naming them.
 
-#include "geolens/source/mesh_source.h"
+#include "source/mesh_source.h"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/core/thread_pool.h"
 #include "geolens/render/render.h"
 #include "geolens/render3d/obj_file.h"
-#include "geolens/render3d/ply_file.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"
+#include "render3d/ply_file.h"
 #include "support/refusal.h"
 #include "support/scratch_folder.h"
 

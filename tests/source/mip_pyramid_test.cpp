@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/downsample.h"
+#include "source/downsample.h"
 
 using geolens::Image;
 using geolens::MipPyramid;

@@ -1,4 +1,4 @@
-#include "geolens/source/png_tile_folder.h"
+#include "source/png_tile_folder.h"
 
 #include <gtest/gtest.h>
 

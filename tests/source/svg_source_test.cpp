@@ -1,7 +1,7 @@
 // The SVG source: its frame maps the SVG's extent as documented, its finer levels are drawn at
 // their own resolution (crisper than the frame level upsampled), malformed files are refused.
 
-#include "geolens/source/svg_source.h"
+#include "source/svg_source.h"
 
 #include <gtest/gtest.h>
 

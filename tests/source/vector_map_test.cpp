@@ -2,7 +2,7 @@
 // its refusals, layers by zoom, and the labels: rank by local scale, no overlaps, nothing drawn
 // outside the output or outside the labels' boxes; and no seam where a lens changes the level.
 
-#include "geolens/source/vector_map.h"
+#include "source/vector_map.h"
 
 #include <gtest/gtest.h>
 
@@ -21,10 +21,10 @@
 #include "geolens/lens/lens_spec.h"
 #include "geolens/render/render.h"
 #include "geolens/source/map_frame.h"
-#include "geolens/source/map_labels.h"
 #include "geolens/source/map_style.h"
 #include "geolens/warp/warp_map.h"
 #include "geolens/warp/warp_mesh.h"
+#include "source/map_labels.h"
 #include "support/scratch_folder.h"
 
 using geolens::Image;

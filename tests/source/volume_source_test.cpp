@@ -3,7 +3,7 @@
 // the ct preset (so the anisotropic spacing is respected), tiles are renders of their region,
 // and bad files and transfer functions are refused with one line naming them.
 
-#include "geolens/source/volume_source.h"
+#include "source/volume_source.h"
 
 #include <gtest/gtest.h>
 
@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/render3d/nifti_file.h"
 #include "geolens/render3d/nrrd_file.h"
 #include "geolens/source/source_file.h"
+#include "render3d/nifti_file.h"
 #include "support/refusal.h"
 #include "support/scratch_folder.h"
 

@@ -2,7 +2,7 @@
 // zoom and counted; the folder rules and their refusals; a magnified region rendered from the
 // deepest zoom.
 
-#include "geolens/source/xyz_tiles.h"
+#include "source/xyz_tiles.h"
 
 #include <gtest/gtest.h>
 
@@ -17,10 +17,10 @@
 #include "geolens/core/errors.h"
 #include "geolens/io/image.h"
 #include "geolens/render/render.h"
-#include "geolens/source/downsample.h"
 #include "geolens/source/source_file.h"
 #include "geolens/source/tiled_source.h"
 #include "geolens/warp/warp_mesh.h"
+#include "source/downsample.h"
 #include "support/scratch_folder.h"
 #include "support/test_data.h"
 

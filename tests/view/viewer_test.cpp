@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "geolens/geometry/polygon.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
+#include "geometry/polygon.h"
 #include "support/scratch_folder.h"
 #include "support/x_display.h"
 

@@ -1,7 +1,7 @@
 // Densifying a polyline: its vertices kept bit for bit, every segment short enough, the new
 // vertices evenly on the old segments.
 
-#include "geolens/warp/densify.h"
+#include "warp/densify.h"
 
 #include <gtest/gtest.h>
 

@@ -13,10 +13,10 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
-#include "geolens/lens/focus_lens.h"
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/warp/densify.h"
+#include "lens/focus_lens.h"
 #include "support/vector_data.h"
+#include "warp/densify.h"
 
 namespace geolens {
 namespace {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "geolens/geometry/conforming_mesh.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/lift.h"
+#include "geometry/conforming_mesh.h"
 
 namespace geolens {
 

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "geolens/io/vector_data.h"
-#include "geolens/source/map_labels.h"
 #include "geolens/source/map_style.h"
 #include "geolens/source/source_file.h"
+#include "source/map_labels.h"
 
 namespace geolens {
 

@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "geolens/render3d/mesh_renderer.h"
 #include "geolens/source/source_file.h"
 #include "geolens/source/tiled_source.h"
+#include "render3d/mesh_renderer.h"
 
 namespace geolens {
 
