@@ -18,7 +18,7 @@
 
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
-#include "geolens/lens/lift.h"
+#include "lens/lift.h"
 
 namespace geolens {
 namespace {

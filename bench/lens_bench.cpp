@@ -9,7 +9,7 @@
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_session.h"
-#include "geolens/lens/lift.h"
+#include "lens/lift.h"
 #include "geolens/lens/texture_map.h"
 
 namespace geolens {

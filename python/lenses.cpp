@@ -10,7 +10,7 @@
 
 #include "arrays.h"
 #include "geolens/geometry/roi.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geolens/lens/profile.h"
 
 namespace geolens::python {

@@ -7,7 +7,8 @@ The table's rows name a layer (`core/`, `lens/`, ...) and, in its last column, t
 include ("—" for none, "all of the above" for every row above it). A file of a layer
 (include/geolens/LAYER/ or src/LAYER/) may include its own layer's headers, public
 ("geolens/LAYER/x.h") or private ("LAYER/x.h" from src/), and those of the layers its row names;
-a public header includes public headers only (the private ones are not installed).
+a public header includes public headers only (the private ones are not installed), and the
+umbrella header include/geolens/geolens.h includes every public header.
 Any other include of a layer's header, or a folder of include/geolens/ or src/ without a row,
 is printed as FILE:LINE and fails the check (exit 1).
 """
@@ -68,6 +69,14 @@ def main():
                         if other != layer and other not in allowed[layer]:
                             problems.append(f"{os.path.relpath(path, root)}:{number}: {layer}/ "
                                             f"includes {other}/ ({line.strip()})")
+    # The umbrella header includes every public header.
+    with open(os.path.join(root, "include", "geolens", "geolens.h")) as f:
+        umbrella = set(re.findall(r'#include "(geolens/\w+/\w+\.h)"', f.read()))
+    for layer in sorted(allowed):
+        folder = os.path.join(root, "include", "geolens", layer)
+        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            if f"geolens/{layer}/{name}" not in umbrella:
+                problems.append(f"include/geolens/geolens.h: does not include geolens/{layer}/{name}")
     for problem in problems:
         print(problem)
     print(f"check_layers: {len(problems)} includes against the layer table" if problems else

@@ -12,7 +12,7 @@
 #include "geolens/geometry/roi.h"
 #include "geolens/io/file_io.h"
 #include "geolens/lens/lens_spec.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/render/annotate.h"
 #include "geolens/render/heatmap.h"

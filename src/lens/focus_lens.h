@@ -11,7 +11,7 @@
 
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/flatten.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geometry/conforming_mesh.h"
 
 namespace geolens {

@@ -5,6 +5,7 @@
 
 #include "geolens/core/errors.h"
 #include "lens/calibration.h"
+#include "lens/lens_pipeline.h"
 #include "lens/solve_cache.h"
 
 namespace geolens {
@@ -44,17 +45,15 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
                                bool draft) {
   State& s = *state_;
   SolveCache& cache = s.caches[draft ? 1 : 0];
-  const GeometricLens& solver = draft && draft_lens_ ? *draft_lens_ : lens_;
-  LensResult fit;
-  Grid grid;
-  Eigen::AlignedBox2d box;
-  const std::vector<Lens> lenses = solver.fitted(asked, fit, grid, box, &cache, draft);
+  const LensPipeline& solver = *(draft && draft_lens_ ? *draft_lens_ : lens_).impl_->pipeline;
+  const FittedLenses fit = solver.fitted(asked, &cache, draft);
   // A draft whose coarse mesh cannot hold a lens's zoom is solved in full: a drag shows the zoom
   // the lens gets at rest, not a frame at less (a circle sliding away from a side flickered to
   // 2.41 of 3 on the draft mesh at two places in 120).
   if (draft && fit.mesh_limited) return update(asked, control, false);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
+  const std::vector<Lens>& lenses = fit.lenses;
   const LensModel model = solver.model_for(lenses);
   std::vector<double> h;
   for (size_t k = 0; k < lenses.size(); ++k) {
@@ -65,14 +64,14 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
                        s.lenses[k].region.size() == lens.region.size();
     h.push_back(lens.zoom == 1 ? 0.0
                 : known        ? s.heights[k]
-                               : initial_height(lens, model, grid.cell));
+                               : initial_height(lens, model, fit.grid.cell));
   }
   Eigen::MatrixX2d before = cache.flat;
   const Eigen::Vector2d box_before = cache.box.min();
   if (s.change.rows() == before.rows()) cache.predicted = before + s.change;
   LensResult r;
   try {
-    r = solver.calibrated(lenses, grid, box, h, cache, control);
+    r = solver.calibrated(fit, fit.grid, h, cache, control);
   } catch (const Cancelled&) {
     // The cache holds a consistent flattener and the last finished flattening, but no steady
     // motion to predict from.
@@ -80,11 +79,8 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
     cache.predicted.resize(0, 2);
     throw;
   }
-  r.zoom_fits = std::move(fit.zoom_fits);
-  r.zoom_fit_reasons = std::move(fit.zoom_fit_reasons);
-  r.mesh_limited = fit.mesh_limited;
-  r.draft = draft &&
-            (draft_lens_ || (r.model == LensModel::kFocus && solver.options().mesh_tolerance > 0));
+  r.draft = draft && (draft_lens_ || (r.model == LensModel::kFocus &&
+                                      solver.context().options.mesh_tolerance > 0));
   s.lenses = lenses;
   s.heights = r.heights;
   s.model = r.model;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 
 namespace geolens {
 

@@ -17,7 +17,7 @@ namespace geolens {
 // refined where the start bends), kept for the next: a lens moved clear of the image border has
 // the same mesh, translated, so the next frame neither remeshes nor refactorizes; one whose
 // footprint the border cuts, the same mesh deformed with it for a few cells
-// (GeometricLens::moved_grid).
+// (FocusPipeline::moved_grid).
 struct MeshMemo {
   std::vector<Lens> lenses;       // as meshed (fitted) or last moved to
   Eigen::AlignedBox2d box;        // the mesh's

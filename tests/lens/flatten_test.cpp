@@ -5,7 +5,7 @@
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/lens/lift.h"
+#include "lens/lift.h"
 #include "geolens/measure/distortion.h"
 #include "support/lens_options.h"
 

@@ -11,7 +11,7 @@
 #include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_session.h"
-#include "geolens/lens/lift.h"
+#include "lens/lift.h"
 #include "geolens/measure/distortion.h"
 #include "support/lens_options.h"
 

@@ -1,4 +1,4 @@
-#include "geolens/lens/lift.h"
+#include "lens/lift.h"
 
 #include <gtest/gtest.h>
 

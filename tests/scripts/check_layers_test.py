@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Tests scripts/check_layers.py: the repository passes, and a copy with one include against the
-layer table, a public header including a private one, a folder without a row or a row
+layer table, a public header including a private one or left out of the umbrella header, a folder without a row or a row
 naming a layer below it fails, naming the cause."""
 import os
 import shutil
@@ -70,6 +70,15 @@ def main():
 
     with tempfile.TemporaryDirectory() as scratch:
         copy_tree(scratch)
+        # A public header the umbrella header leaves out.
+        open(os.path.join(scratch, "include", "geolens", "lens", "extra.h"), "w").write(
+            "#pragma once\n")
+        code, out = run(scratch)
+        expect(code == 1 and "geolens.h: does not include geolens/lens/extra.h" in out,
+               f"a public header left out of the umbrella passes:\n{out}")
+
+    with tempfile.TemporaryDirectory() as scratch:
+        copy_tree(scratch)
         os.makedirs(os.path.join(scratch, "src", "extras"))
         code, out = run(scratch)
         expect(code == 1 and "src/extras/: no row" in out, f"a folder without a row passes:\n{out}")
@@ -87,7 +96,7 @@ def main():
         code, out = run(scratch)
         expect(code != 0 and "numerics/ names ['lens']" in out,
                f"a row naming a layer below it passes:\n{out}")
-    print("check_layers_test: 6 cases passed")
+    print("check_layers_test: 7 cases passed")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_mesh.h"
 

@@ -3,7 +3,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,15 +12,12 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/geometry/subdivide.h"
 #include "geolens/lens/flatten.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geolens/lens/magnification.h"
 #include "geolens/lens/texture_map.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
-
-struct FocusField;  // focus_lens.h
-class ThreadPool;   // core/thread_pool.h
 
 /// Which part of the image takes part in the solve.
 enum class Extent {
@@ -120,12 +116,13 @@ struct LensResult : Magnification {
 /// What every face says (the CLI on stderr, Python as warnings).
 std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const LensResult& result);
 
-struct SolveCache;  // what one solve leaves for the next: lens/solve_cache.h (private)
-struct MeshMemo;    // the last mesh, in a SolveCache
-
 /// Magnifies lenses on a width x height image. Holds the grid and nothing that changes: solve()
 /// is independent of any earlier call and may run on several threads at once. The interactive
 /// path, which keeps what one frame leaves for the next, is LensSession (lens_session.h).
+///
+/// How it solves is chosen once, from options.model: the focus model's pipeline (fitted where it
+/// is, one solve) or the paper's (lift, texture, flatten, calibrated heights); solve() does not
+/// branch on the model (docs/architecture.md).
 ///
 /// Threads: the lens owns one ThreadPool of options.flatten.threads (0 = one per hardware
 /// thread), started by the constructor and shared by its copies; every solve runs its parallel
@@ -149,63 +146,15 @@ class GeometricLens {
                                 const std::vector<double>& heights) const;
 
   /// The grid of the whole image (global extent).
-  const Grid& grid() const { return grid_; }
-  double width() const { return width_; }
-  double height() const { return height_; }
-  const LensOptions& options() const { return options_; }
+  const Grid& grid() const;
+  double width() const;
+  double height() const;
+  const LensOptions& options() const;
 
  private:
-  friend class LensSession;
-  Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
-  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft = false,
-                 std::vector<int>* on_curve = nullptr) const;
-  bool clear_of_border(const std::vector<Lens>& lenses) const;
-  std::optional<Grid> moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
-                                 Eigen::AlignedBox2d& box) const;
-  LensModel model_for(const std::vector<Lens>& lenses) const;
-  // The lenses to solve (validated), and the grid (over `box`) to solve them on. kFocus: each
-  // zoom lowered to the largest that fits, those zooms in `r.zoom_fits` and why in
-  // `r.zoom_fit_reasons`; other models: the lenses as they are. With a cache, kFocus reuses its
-  // last mesh for lenses that only moved (moved_grid) and keeps the mesh it makes. A draft's mesh
-  // is not refined.
-  std::vector<Lens> fitted(const std::vector<Lens>& lenses, LensResult& r, Grid& grid,
-                           Eigen::AlignedBox2d& box, SolveCache* cache = nullptr,
-                           bool draft = false) const;
-  // kFocus: the lenses at the largest zooms up to theirs that fit where they are, their
-  // footprints at those zooms (fitting_zooms), with what limits each in `reasons`; lenses near
-  // each other magnified as one where that gives them more, unless not `merge`.
-  std::vector<Lens> fitting(const std::vector<Lens>& lenses, std::vector<std::string>& reasons,
-                            bool merge) const;
-  // fitted's kFocus part, with or without merging lenses near each other (fitting); `merged`
-  // tells whether some lenses were magnified as one.
-  std::vector<Lens> fitted_focus(const std::vector<Lens>& lenses, bool merge, LensResult& r,
-                                 Grid& grid, Eigen::AlignedBox2d& box, MeshMemo* memo, bool draft,
-                                 bool* merged = nullptr) const;
-  // The mesh solved for the first guess of the heights: the grid, subdivided for kLift and kField.
-  PlanarMesh solved_mesh(const Grid& grid, const std::vector<Lens>& lenses,
-                         const std::vector<double>& heights) const;
-  FlattenOptions flatten_options(LensModel model) const;
-  Lifted lift_and_texture(const std::vector<Lens>& lenses, const std::vector<double>& heights,
-                          const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
-                          std::chrono::steady_clock::time_point start, LensResult& r,
-                          FocusField& focus) const;
-  void texture(const Lifted& lifted, LensResult& r) const;
-  void finish(const std::vector<Lens>& lenses, const Lifted& lifted, LensResult& r) const;
-  // The one solve path: lifts `mesh` (over `box`) with `heights`, refits the flattener in `cache`
-  // (or builds it, when the topology changed), flattens from the cache's last flattening (or its
-  // prediction, or a focus lens's start) and frames the result. Leaves the flattening in the
-  // cache. `solve` numbers the calibration solve for `control`'s progress.
-  LensResult solve_once(const PlanarMesh& mesh, const Eigen::AlignedBox2d& box,
-                        const std::vector<Lens>& lenses, const std::vector<double>& heights,
-                        SolveCache& cache, const SolveControl& control, int solve) const;
-  LensResult calibrated(const std::vector<Lens>& lenses, const PlanarMesh& mesh,
-                        const Eigen::AlignedBox2d& box, const std::vector<double>& heights,
-                        SolveCache& cache, const SolveControl& control) const;
-
-  double width_, height_;
-  LensOptions options_;
-  Grid grid_;
-  std::shared_ptr<ThreadPool> pool_;
+  friend class LensSession;  // calls the pipeline's steps with its caches
+  struct Impl;               // the pipeline of options.model (src/lens/lens_pipeline.h)
+  std::shared_ptr<const Impl> impl_;
 };
 
 }  // namespace geolens

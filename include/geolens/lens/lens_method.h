@@ -8,7 +8,7 @@
 
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/lens/lift.h"
+#include "geolens/lens/lens.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {

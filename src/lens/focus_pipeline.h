@@ -1,0 +1,54 @@
+#pragma once
+// Private: the focus model's pipeline (LensModel::kFocus, docs/design.md "Focus lenses"): the
+// lenses fitted where they are (shared room, the largest zoom that fits, what the mesh holds),
+// the mesh over their footprints made to follow the regions (or the last frame's, moved), the
+// focus field and its start, one solve.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lens/lens_pipeline.h"
+
+namespace geolens {
+
+struct MeshMemo;
+
+class FocusPipeline final : public LensPipeline {
+ public:
+  using LensPipeline::LensPipeline;
+
+  LensModel model_for(const std::vector<Lens>&) const override { return LensModel::kFocus; }
+  FittedLenses fitted(const std::vector<Lens>& lenses, SolveCache* cache,
+                      bool draft) const override;
+  FittedLenses unfitted(const std::vector<Lens>& lenses) const override;
+  PlanarMesh solved_mesh(const FittedLenses& fit, const std::vector<double>&) const override {
+    return fit.grid;
+  }
+  LensResult solve_once(const Eigen::AlignedBox2d& box, const std::vector<Lens>& lenses,
+                        const PlanarMesh& mesh, const std::vector<double>& h, SolveCache& cache,
+                        const SolveControl& control, int solve) const override;
+
+ private:
+  // The footprints' box, within the image.
+  Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
+  // The grid over the footprints' box (`box`), made to follow every region's boundary and
+  // footprint's edge and, unless a draft, refined where the start bends; `on_curve` as
+  // conform_mesh gives it.
+  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
+                 std::vector<int>* on_curve) const;
+  bool clear_of_border(const std::vector<Lens>& lenses) const;
+  std::optional<Grid> moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
+                                 Eigen::AlignedBox2d& box) const;
+  // The lenses at the largest zooms up to theirs that fit where they are, their footprints at
+  // those zooms (fitting_zooms), with what limits each in `reasons`; lenses near each other
+  // magnified as one where that gives them more, unless not `merge`.
+  std::vector<Lens> fitting(const std::vector<Lens>& lenses, std::vector<std::string>& reasons,
+                            bool merge) const;
+  // fitted with or without merging lenses near each other (fitting); `merged` tells whether some
+  // lenses were magnified as one.
+  FittedLenses fitted_once(const std::vector<Lens>& lenses, bool merge, MeshMemo* memo, bool draft,
+                           bool* merged = nullptr) const;
+};
+
+}  // namespace geolens

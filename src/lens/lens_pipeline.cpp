@@ -1,0 +1,100 @@
+#include "lens/lens_pipeline.h"
+
+#include <cmath>
+#include <utility>
+
+#include "geolens/measure/distortion.h"
+#include "lens/calibration.h"
+#include "lens/focus_pipeline.h"
+#include "lens/framing.h"
+#include "lens/lift_pipeline.h"
+#include "lens/solve_cache.h"
+
+namespace geolens {
+
+std::unique_ptr<LensPipeline> LensPipeline::make(LensContext context) {
+  if (context.options.model == LensModel::kFocus)
+    return std::make_unique<FocusPipeline>(std::move(context));
+  return std::make_unique<LiftPipeline>(std::move(context));
+}
+
+double LensPipeline::ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double LensPipeline::cell_size(const Eigen::AlignedBox2d& box) const {
+  return box.sizes().maxCoeff() / (c_.options.mesh - 1);
+}
+
+LensResult LensPipeline::calibrated(const FittedLenses& fit, const PlanarMesh& mesh,
+                                    const std::vector<double>& h, SolveCache& cache,
+                                    const SolveControl& control) const {
+  LensResult r = calibrate(
+      fit.lenses, model_for(fit.lenses), h, c_.options.zoom_tolerance,
+      c_.options.max_calibration_solves, [&](const std::vector<double>& heights, int solve) {
+        return solve_once(fit.box, fit.lenses, mesh, heights, cache, control, solve);
+      });
+  r.zoom_fits = fit.zoom_fits;
+  r.zoom_fit_reasons = fit.zoom_fit_reasons;
+  r.mesh_limited = fit.mesh_limited;
+  return r;
+}
+
+void LensPipeline::prepare_flattener(const Lifted& lifted, const FocusConstraints& constraints,
+                                     const FlattenOptions& options, LensResult& r,
+                                     SolveCache& cache) const {
+  const auto t = Clock::now();
+  // A local patch has the same topology wherever it is, as long as its size is unchanged; a
+  // focus lens's also needs the same pinned vertices.
+  const bool same_topology =
+      cache.flattener && cache.model == r.model && cache.flat.rows() == r.mesh.V.rows() &&
+      (cache.box.sizes() - r.box.sizes()).norm() < 1e-9 && constraints.pinned == cache.pinned &&
+      cache.faces.rows() == r.mesh.F.rows() && cache.faces == r.mesh.F;
+  if (same_topology) {
+    cache.flattener->reweight(lifted.V, lifted.level, lifted.log_zoom, constraints);
+    const Eigen::RowVector2d shift = (r.box.min() - cache.box.min()).transpose();
+    cache.flat.rowwise() += shift;
+    if (cache.predicted.rows() == cache.flat.rows()) cache.predicted.rowwise() += shift;
+  } else {
+    cache.flattener = std::make_unique<Flattener>(lifted.V, r.mesh.F, lifted.level, r.mesh.sides,
+                                                  options, lifted.log_zoom, constraints, c_.pool);
+    cache.flat = r.mesh.V;
+    cache.predicted.resize(0, 2);
+  }
+  cache.box = r.box;
+  cache.pinned = constraints.pinned;
+  cache.faces = r.mesh.F;
+  cache.model = r.model;
+  r.timings.factorize = ms_since(t);
+}
+
+SolveControl LensPipeline::numbered(const SolveControl& control, int solve) {
+  SolveControl out{control.cancel, nullptr};
+  if (control.progress)
+    out.progress = [progress = control.progress, solve](const SolveProgress& p) {
+      progress({solve, p.iteration, p.energy});
+    };
+  return out;
+}
+
+void LensPipeline::finish(const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,
+                          LensResult& r) const {
+  const double width = c_.width, height = c_.height;
+  r.lifted = lifted.V;
+  r.flat = r.flattening.X;
+  r.warp.F = r.mesh.F;
+  r.warp.screen = frame(r.flat, boundary, width, height);
+  r.warp.screen_width = int(std::lround(width));
+  r.warp.screen_height = int(std::lround(height));
+  const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(width, height));
+  if (!r.box.isApprox(image)) add_identity_frame(r.warp, r.mesh, r.box, width, height);
+  for (const Lens& lens : lenses) {
+    const double radius =
+        zoom_measure_radius(lens.region.size(), r.box.sizes().maxCoeff(), c_.options.mesh);
+    r.zoom_measured.push_back(magnification_at(r.warp, lens.region.peak(), radius));
+    r.zoom_parameter.push_back(lens.zoom);
+  }
+  r.solves = 1;
+}
+
+}  // namespace geolens
