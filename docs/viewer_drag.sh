@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Makes docs/viewer_drag_{1,2,3}.jpg, the README's three frames of a drag in geolens-view, with
+# Makes docs/viewer_drag_{1,2,3}.jpg, docs/viewer.md's three frames of a drag in geolens-view, with
 # the viewer itself: a zoom-2.5 lens on the demo map dragged across it, a
 # screenshot every 15 frames (each once the solver has answered). Needs xvfb-run.
 # Usage: bash docs/viewer_drag.sh [BUILD_DIR]   (default build/)

@@ -6,7 +6,7 @@
 // A finding: a crash, a sanitizer report, an exception other than InvalidInput, a hang, an
 // allocation past libFuzzer's limit.
 #include "fuzz_support.h"
-#include "geolens/render3d/nrrd_file.h"
+#include "render3d/nrrd_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace geolens;

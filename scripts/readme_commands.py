@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Runs the README's commands, then checks or regenerates the pictures the README shows.
+"""Runs the commands of the README and the docs pages, then checks or regenerates their pictures.
 
 Usage: readme_commands.py [--build DIR] [--regenerate]
 
-Every ```sh and ```python block of README.md is run in order (bash -euo pipefail; python3 with
+Every ```sh and ```python block of README.md and of the PAGES under docs/ is run in order (the
+pages' order, each page's blocks top to bottom, all in one scratch folder) (bash -euo pipefail; python3 with
 the build's module on its path) except those that set up, build or install geolens: a block
 calling scripts/*.sh, `cmake -S`, `cmake --install` or `pkg-config` (CI runs those itself, and
 scripts/package_check.sh the install). They run in a scratch folder holding copies of examples/
@@ -13,8 +14,8 @@ written and the repository is not touched. Checked:
   - each block exits 0 within TIMEOUT seconds;
   - a ```output block (or a table after a line <!-- output -->) after a command block holds
     lines that block's output (stdout and stderr) must contain, each line somewhere in it;
-  - every picture the README shows exists in the repository and is made by a command of the
-    README, either written to docs/ directly or written to out/ by a line that says "kept as
+  - every picture a page shows exists in the repository and is made by a command of the
+    pages, either written to docs/ directly or written to out/ by a line that says "kept as
     docs/NAME" (its out/ path with the same extension is the picture), unless MADE_ELSEWHERE says
     which other script made it and why;
   - each picture made here matches the committed one: the same size, and a mean difference of
@@ -37,8 +38,11 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TIMEOUT = 600
 MAX_MEAN_DIFFERENCE = 0.5
+# The pages whose commands run, in order (the README's sections before they became pages).
+PAGES = ["README.md", "docs/cli.md", "docs/sources.md", "docs/viewer.md", "docs/library.md",
+         "docs/python.md", "docs/development.md"]
 SETUP = re.compile(r"scripts/\S+\.sh|cmake -S|cmake --install|pkg-config")
-# Pictures of the README no command of it makes: the script that does, or why none does.
+# Pictures of the pages no command of them makes: the script that does, or why none does.
 MADE_ELSEWHERE = {
     "docs/demo_before_after.jpg": "scripts/demo.sh (the README's first command)",
     "docs/rim_before.jpg": "the power ring's rim before issue 28, kept for the comparison",
@@ -97,9 +101,12 @@ def main():
     sys.path.insert(0, python_path)
     import geolens  # the build's module: the pictures are compared with its decoder
 
-    with open(os.path.join(ROOT, "README.md")) as f:
-        readme = f.read()
-    shown = re.findall(r"!\[[^]]*\]\((docs/[^)]+)\)", readme)
+    shown = []
+    for page in PAGES:
+        with open(os.path.join(ROOT, page)) as f:
+            text = f.read()
+        for link in re.findall(r"!\[[^]]*\]\(([^)]+)\)", text):
+            shown.append(os.path.normpath(os.path.join(os.path.dirname(page), link)))
     failures = []
     work = tempfile.mkdtemp(prefix="readme-")
     try:
@@ -108,33 +115,37 @@ def main():
         os.symlink(build, os.path.join(work, "build"))
         env = dict(os.environ, PYTHONPATH=python_path, TMPDIR=work)
         made, last_output, last_line = {}, None, None
-        for info, text, line in blocks(readme):
-            if info == "output":
-                if last_output is None:
-                    failures.append(f"README.md:{line}: an output block after no command block")
-                for wanted in filter(None, (w.strip() for w in text.splitlines())):
-                    if wanted not in last_output:
-                        failures.append(f"README.md:{line}: the block at line {last_line} did not print: {wanted}")
-                continue
-            if info not in ("sh", "python") or (info == "sh" and SETUP.search(text)):
-                continue
-            command = ["bash", "-euo", "pipefail", "-c", text] if info == "sh" else [sys.executable, "-c", text]
-            start = time.monotonic()
-            try:
-                run = subprocess.run(command, cwd=work, env=env, capture_output=True, text=True, timeout=TIMEOUT)
-                status, output = run.returncode, run.stdout + run.stderr
-            except subprocess.TimeoutExpired:
-                status, output = "timeout", ""
-            print(f"README.md:{line}: {info} block, exit {status}, {time.monotonic() - start:.1f} s", flush=True)
-            if status != 0:
-                failures.append(f"README.md:{line}: the block exited {status}:\n{output.strip()[-2000:]}")
-            made.update(made_pictures(text))
-            last_output, last_line = output, line
+        for page in PAGES:
+            with open(os.path.join(ROOT, page)) as f:
+                text = f.read()
+            for info, block, line in blocks(text):
+                where = f"{page}:{line}"
+                if info == "output":
+                    if last_output is None:
+                        failures.append(f"{where}: an output block after no command block")
+                    for wanted in filter(None, (w.strip() for w in block.splitlines())):
+                        if wanted not in last_output:
+                            failures.append(f"{where}: the block at {last_line} did not print: {wanted}")
+                    continue
+                if info not in ("sh", "python") or (info == "sh" and SETUP.search(block)):
+                    continue
+                command = ["bash", "-euo", "pipefail", "-c", block] if info == "sh" else [sys.executable, "-c", block]
+                start = time.monotonic()
+                try:
+                    run = subprocess.run(command, cwd=work, env=env, capture_output=True, text=True, timeout=TIMEOUT)
+                    status, output = run.returncode, run.stdout + run.stderr
+                except subprocess.TimeoutExpired:
+                    status, output = "timeout", ""
+                print(f"{where}: {info} block, exit {status}, {time.monotonic() - start:.1f} s", flush=True)
+                if status != 0:
+                    failures.append(f"{where}: the block exited {status}:\n{output.strip()[-2000:]}")
+                made.update(made_pictures(block))
+                last_output, last_line = output, where
         for picture in sorted(set(shown)):
             if not os.path.isfile(os.path.join(ROOT, picture)):
-                failures.append(f"{picture}: shown in the README but not in the repository")
+                failures.append(f"{picture}: shown on a page but not in the repository")
             elif (picture in made) == (picture in MADE_ELSEWHERE):
-                failures.append(f"{picture}: made by {'both a README command and' if picture in made else 'neither a README command nor'} MADE_ELSEWHERE")
+                failures.append(f"{picture}: made by {'both a command of the pages and' if picture in made else 'neither a command of the pages nor'} MADE_ELSEWHERE")
         for picture, path in sorted(made.items()):
             produced = os.path.join(work, path)
             if not os.path.isfile(produced):
@@ -146,7 +157,7 @@ def main():
                 difference = mean_difference(produced, os.path.join(ROOT, picture), geolens)
                 print(f"{picture}: mean difference {difference}")
                 if difference is None or difference > MAX_MEAN_DIFFERENCE:
-                    failures.append(f"{picture}: the README's command now draws a different picture "
+                    failures.append(f"{picture}: the pages' command now draws a different picture "
                                     f"(mean difference {difference}); run scripts/readme_commands.py --regenerate")
         if args.regenerate:
             for script in sorted({s for s in MADE_ELSEWHERE.values() if s.startswith("docs/") and s.endswith(".sh")}):

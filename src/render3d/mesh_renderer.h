@@ -19,7 +19,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/render3d/camera.h"
-#include "geolens/render3d/triangle_mesh.h"
+#include "render3d/triangle_mesh.h"
 
 namespace geolens {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "geolens/render3d/scalar_volume.h"
+#include "render3d/scalar_volume.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/render3d/nrrd_file.h"
+#include "render3d/nrrd_file.h"
 
 #include <zlib.h>
 

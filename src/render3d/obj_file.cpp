@@ -1,4 +1,4 @@
-#include "geolens/render3d/obj_file.h"
+#include "render3d/obj_file.h"
 
 #include <tiny_obj_loader.h>
 

@@ -1,4 +1,4 @@
-#include "geolens/render3d/scalar_volume.h"
+#include "render3d/scalar_volume.h"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geolens/render3d/scalar_volume.h"
+#include "render3d/scalar_volume.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/render3d/triangle_mesh.h"
+#include "render3d/triangle_mesh.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

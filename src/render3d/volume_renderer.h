@@ -14,7 +14,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/render3d/camera.h"
-#include "geolens/render3d/scalar_volume.h"
+#include "render3d/scalar_volume.h"
 #include "render3d/transfer_function.h"
 
 namespace geolens {

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "geolens/core/errors.h"
-#include "geolens/render3d/obj_file.h"
+#include "render3d/obj_file.h"
 #include "render3d/ply_file.h"
 #include "source/scene_tiles.h"
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "geolens/io/image.h"
-#include "geolens/render3d/nrrd_file.h"
 #include "geolens/source/mip_pyramid.h"
+#include "render3d/nrrd_file.h"
 #include "source/level_list.h"
 #include "source/mesh_source.h"
 #include "source/svg_source.h"

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "geolens/core/errors.h"
-#include "geolens/render3d/nrrd_file.h"
 #include "render3d/nifti_file.h"
+#include "render3d/nrrd_file.h"
 #include "source/scene_tiles.h"
 
 namespace geolens {

@@ -4,7 +4,7 @@
 // ellipse mask or a circle, at zooms 1 to 8, solved by the focus, lift and field models. None
 // throws, none gives a coordinate that is not finite, each takes under 5 s; the focus model
 // flips nothing and measures the zoom it reports (within 1 %); the lift and field models flip a few
-// triangles in about one setup in ten (the README says so).
+// triangles in about one setup in ten (docs/cli.md says so).
 
 #include <gtest/gtest.h>
 

@@ -467,7 +467,7 @@ TEST_F(VectorMapTest, OverlayDrawsTheDotsAndLabelsOfALabelledLayerUnmagnified) {
 
 TEST_F(VectorMapTest, ALensOverEuropeShowsNamesTheMapWithoutItLeavesOut) {
   // The example map (Natural Earth, examples/europe.geojson) framed 1024 x 977, a zoom-4 lens
-  // over the Low Countries, as the README shows.
+  // over the Low Countries, as docs/sources.md shows.
   const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
   const geolens::VectorData data = geolens::read_geojson(examples + "europe.geojson");
   const geolens::MapStyle style = geolens::read_map_style(examples + "europe_style.json");
@@ -586,11 +586,11 @@ SeamRatio seam_ratio(const Image& a, const Image& b, const std::vector<double>& 
 }
 
 TEST_F(VectorMapTest, NoSeamWhereTheLensChangesTheLevel) {
-  // The README's Europe map framed 1024 x 977 (scale 8: 8 texels a frame pixel at level 0), and
-  // the same map framed 1448 px wide, so that its levels are sqrt(2) finer, half a level from the
-  // first's. Two zoom-4 lenses over the Low Countries: the geometric focus lens (as the README
-  // shows it), and a flat-top lens whose magnification falls continuously from 4 to 1 (raised
-  // cosine), so that the level changes all across its ring.
+  // The Europe map of docs/sources.md framed 1024 x 977 (scale 8: 8 texels a frame pixel at level
+  // 0), and the same map framed 1448 px wide, so that its levels are sqrt(2) finer, half a level
+  // from the first's. Two zoom-4 lenses over the Low Countries: the geometric focus lens (as
+  // docs/sources.md shows it), and a flat-top lens whose magnification falls continuously from 4 to
+  // 1 (raised cosine), so that the level changes all across its ring.
   const std::string examples = std::string(GEOLENS_SOURCE_DIR) + "/examples/";
   SourceFileOptions options;
   options.width = 1024;

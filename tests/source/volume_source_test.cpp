@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/render3d/nrrd_file.h"
 #include "geolens/source/source_file.h"
 #include "render3d/nifti_file.h"
+#include "render3d/nrrd_file.h"
 #include "support/refusal.h"
 #include "support/scratch_folder.h"
 

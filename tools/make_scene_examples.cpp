@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "geolens/render3d/nrrd_file.h"
-#include "geolens/render3d/obj_file.h"
+#include "render3d/nrrd_file.h"
+#include "render3d/obj_file.h"
 
 namespace {
 

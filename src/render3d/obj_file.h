@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "geolens/render3d/triangle_mesh.h"
+#include "render3d/triangle_mesh.h"
 
 namespace geolens {
 
