@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
+#include "lens/flatten.h"
 #include "lens/lift.h"
 
 namespace geolens {

@@ -6,11 +6,11 @@
 #include <cstdint>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_session.h"
+#include "lens/flatten.h"
 #include "lens/lift.h"
-#include "geolens/lens/texture_map.h"
+#include "lens/texture_map.h"
 
 namespace geolens {
 namespace {

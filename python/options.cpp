@@ -4,8 +4,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/lens/flatten.h"
-#include "geolens/lens/texture_map.h"
+#include "geolens/lens/lens_options.h"
 
 namespace geolens::python {
 

@@ -1,4 +1,4 @@
-#include "geolens/lens/flatten.h"
+#include "lens/flatten.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -12,62 +12,11 @@
 #include "core/thread_pool.h"
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/texture_map.h"
+#include "lens/texture_map.h"
 #include "numerics/sparse_solver.h"
 #include "numerics/svd2.h"
 
 namespace geolens {
-
-FlattenWeights parse_flatten_weights(const std::string& name) {
-  if (name == "paper") return FlattenWeights::kPaper;
-  if (name == "cotan") return FlattenWeights::kCotan;
-  throw InvalidInput("parse_flatten_weights: unknown weights '" + name +
-                     "' (expected paper or cotan)");
-}
-
-Metric parse_metric(const std::string& name) {
-  if (name == "paper") return Metric::kPaper;
-  if (name == "spectrum") return Metric::kSpectrum;
-  throw InvalidInput("parse_metric: unknown metric '" + name + "' (expected paper or spectrum)");
-}
-
-Boundary parse_boundary(const std::string& name) {
-  if (name == "sliding") return Boundary::kSliding;
-  if (name == "fixed") return Boundary::kFixed;
-  if (name == "free") return Boundary::kFree;
-  throw InvalidInput("parse_boundary: unknown boundary '" + name +
-                     "' (expected sliding, fixed or free)");
-}
-
-std::string to_string(FlattenWeights weights) {
-  return weights == FlattenWeights::kPaper ? "paper" : "cotan";
-}
-std::string to_string(Metric metric) { return metric == Metric::kPaper ? "paper" : "spectrum"; }
-std::string to_string(Boundary boundary) {
-  switch (boundary) {
-    case Boundary::kSliding:
-      return "sliding";
-    case Boundary::kFixed:
-      return "fixed";
-    case Boundary::kFree:
-      return "free";
-  }
-  return "?";
-}
-
-void validate(const FlattenOptions& o) {
-  const double alpha_max = o.metric == Metric::kPaper ? 1.0 : 1.0 + 1e-12;
-  require_option(std::isfinite(o.alpha) && o.alpha >= 0 && o.alpha < alpha_max, "validate", "alpha",
-                 "must be in " + std::string(o.metric == Metric::kPaper ? "[0, 1)" : "[0, 1]") +
-                     " for metric " + to_string(o.metric) + ", got " + number_text(o.alpha));
-  require_option(std::isfinite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "validate",
-                 "tolerance", "must be in (0, 1), got " + number_text(o.tolerance));
-  require_option(o.max_iterations >= 1 && o.max_iterations <= 100000, "validate", "max_iterations",
-                 "must be in [1, 100000], got " + std::to_string(o.max_iterations));
-  require_option(o.threads >= 0 && o.threads <= ThreadPool::kMaxThreads, "validate", "threads",
-                 "must be in [0, " + std::to_string(ThreadPool::kMaxThreads) + "], got " +
-                     std::to_string(o.threads));
-}
 
 Flattener::Flattener(const Eigen::MatrixX3d& V3, const Eigen::MatrixX3i& F,
                      const Eigen::VectorXd& level, const std::vector<uint8_t>& sides,

@@ -12,7 +12,7 @@
 
 #include "core/parallel.h"
 #include "geolens/core/errors.h"
-#include "geolens/lens/texture_map.h"
+#include "geolens/lens/lens_options.h"
 #include "lens/shared_room.h"
 #include "numerics/bracketed_root.h"
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/lens.h"
 #include "geometry/conforming_mesh.h"
+#include "lens/flatten.h"
 
 namespace geolens {
 

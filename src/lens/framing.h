@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
+#include "geolens/lens/lens_options.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {

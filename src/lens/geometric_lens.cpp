@@ -13,37 +13,6 @@
 
 namespace geolens {
 
-Extent parse_extent(const std::string& name) {
-  if (name == "global") return Extent::kGlobal;
-  if (name == "local") return Extent::kLocal;
-  throw InvalidInput("parse_extent: unknown extent '" + name + "' (expected global or local)");
-}
-
-std::string to_string(Extent extent) { return extent == Extent::kGlobal ? "global" : "local"; }
-
-LensModel parse_lens_model(const std::string& name) {
-  if (name == "focus") return LensModel::kFocus;
-  if (name == "lift") return LensModel::kLift;
-  if (name == "field") return LensModel::kField;
-  if (name == "auto") return LensModel::kAuto;
-  throw InvalidInput("parse_lens_model: unknown lens model '" + name +
-                     "' (expected focus, lift, field or auto)");
-}
-
-std::string to_string(LensModel model) {
-  switch (model) {
-    case LensModel::kFocus:
-      return "focus";
-    case LensModel::kLift:
-      return "lift";
-    case LensModel::kField:
-      return "field";
-    case LensModel::kAuto:
-      return "auto";
-  }
-  return "?";
-}
-
 std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const LensResult& result) {
   // Six significant digits, as the CLI has always printed these zooms (3.20563).
   auto text = [](double value) { return (std::ostringstream() << value).str(); };
@@ -62,24 +31,6 @@ std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const Le
   return lines;
 }
 
-void validate(const LensOptions& o) {
-  require_option(std::isfinite(o.extent_factor) && o.extent_factor > 1 && o.extent_factor <= 100,
-                 "validate", "extent_factor",
-                 "must be in (1, 100], got " + number_text(o.extent_factor));
-  require_mesh_vertices(o.mesh, "validate");
-  if (o.draft_mesh != 0) require_mesh_vertices(o.draft_mesh, "validate", "draft_mesh");
-  // Finer than a hundredth of a pixel shows nothing and refines without end (1e-9 ran away).
-  require_option(
-      std::isfinite(o.mesh_tolerance) && (o.mesh_tolerance == 0 || o.mesh_tolerance >= 0.01),
-      "validate", "mesh_tolerance",
-      "must be 0 (no refinement) or at least 0.01 pixels, got " + number_text(o.mesh_tolerance));
-  require(std::isfinite(o.zoom_tolerance) && o.zoom_tolerance > 0, "validate",
-          "zoom tolerance must be positive");
-  require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");
-  validate(o.subdivision);
-  validate(o.flatten);
-}
-
 GeometricLens::GeometricLens(double width, double height, const LensOptions& options) {
   validate(options);
   LensContext context{width, height, options, make_grid(width, height, options.mesh),
@@ -91,13 +42,6 @@ const Grid& GeometricLens::grid() const { return impl_->pipeline->context().grid
 double GeometricLens::width() const { return impl_->pipeline->context().width; }
 double GeometricLens::height() const { return impl_->pipeline->context().height; }
 const LensOptions& GeometricLens::options() const { return impl_->pipeline->context().options; }
-
-LensModel resolved_model(LensModel model, const std::vector<Lens>& lenses) {
-  if (model != LensModel::kAuto) return model;
-  for (const Lens& lens : lenses)
-    if (!lens.region.circle()) return LensModel::kField;
-  return LensModel::kLift;
-}
 
 LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
                                              const std::vector<double>& heights) const {

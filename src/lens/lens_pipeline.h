@@ -15,8 +15,8 @@
 
 #include "geolens/core/solve_control.h"
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "lens/flatten.h"
 #include "lens/lift.h"
 
 namespace geolens {

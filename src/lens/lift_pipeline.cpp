@@ -1,8 +1,8 @@
 #include "lens/lift_pipeline.h"
 
 #include "geolens/geometry/subdivide.h"
-#include "geolens/lens/texture_map.h"
 #include "lens/solve_cache.h"
+#include "lens/texture_map.h"
 
 namespace geolens {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/enum_names.h"
 #include "geolens/core/errors.h"
 
 namespace geolens {
@@ -29,24 +30,15 @@ double profile_value(Profile profile, double t) {
   return 0.0;
 }
 
+namespace {
+constexpr EnumName<Profile> kProfiles[] = {
+    {Profile::kGaussian, "gaussian"}, {Profile::kSphere, "sphere"}, {Profile::kMesa, "mesa"}};
+}  // namespace
+
 Profile parse_profile(const std::string& name) {
-  if (name == "gaussian") return Profile::kGaussian;
-  if (name == "sphere") return Profile::kSphere;
-  if (name == "mesa") return Profile::kMesa;
-  throw InvalidInput("parse_profile: unknown profile '" + name +
-                     "' (expected gaussian, sphere or mesa)");
+  return parse_enum(kProfiles, name, "parse_profile", "profile");
 }
 
-std::string to_string(Profile profile) {
-  switch (profile) {
-    case Profile::kGaussian:
-      return "gaussian";
-    case Profile::kSphere:
-      return "sphere";
-    case Profile::kMesa:
-      return "mesa";
-  }
-  return "?";
-}
+std::string to_string(Profile profile) { return enum_name(kProfiles, profile); }
 
 }  // namespace geolens

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "lens/flatten.h"
 
 namespace geolens {
 

@@ -1,4 +1,4 @@
-#include "geolens/lens/texture_map.h"
+#include "lens/texture_map.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -10,26 +10,6 @@
 #include "numerics/sparse_solver.h"
 
 namespace geolens {
-
-TextureWeights parse_texture_weights(const std::string& name) {
-  if (name == "mvc") return TextureWeights::kMeanValue;
-  if (name == "cotan") return TextureWeights::kCotan;
-  if (name == "cotan+") return TextureWeights::kPositiveCotan;
-  throw InvalidInput("parse_texture_weights: unknown texture weights '" + name +
-                     "' (expected cotan, cotan+ or mvc)");
-}
-
-std::string to_string(TextureWeights weights) {
-  switch (weights) {
-    case TextureWeights::kMeanValue:
-      return "mvc";
-    case TextureWeights::kCotan:
-      return "cotan";
-    case TextureWeights::kPositiveCotan:
-      return "cotan+";
-  }
-  return "?";
-}
 
 int count_folds(const Eigen::MatrixX2d& uv, const Eigen::MatrixX3i& F) {
   int folds = 0;

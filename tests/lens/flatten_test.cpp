@@ -1,12 +1,12 @@
-#include "geolens/lens/flatten.h"
+#include "lens/flatten.h"
 
 #include <gtest/gtest.h>
 
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/geometric_lens.h"
-#include "lens/lift.h"
 #include "geolens/measure/distortion.h"
+#include "lens/lift.h"
 #include "support/lens_options.h"
 
 namespace geolens {

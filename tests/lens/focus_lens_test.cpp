@@ -19,12 +19,13 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/classic_lens.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_options.h"
 #include "geolens/lens/lens_session.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_map.h"
 #include "geometry/conforming_mesh.h"
+#include "lens/texture_map.h"
 
 namespace geolens {
 namespace {

@@ -8,11 +8,11 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_session.h"
-#include "lens/lift.h"
 #include "geolens/measure/distortion.h"
+#include "lens/flatten.h"
+#include "lens/lift.h"
 #include "support/lens_options.h"
 
 namespace geolens {

@@ -1,4 +1,4 @@
-#include "geolens/lens/texture_map.h"
+#include "lens/texture_map.h"
 
 #include <gtest/gtest.h>
 

@@ -10,73 +10,12 @@
 
 #include "geolens/core/solve_control.h"
 #include "geolens/geometry/grid.h"
-#include "geolens/geometry/subdivide.h"
-#include "geolens/lens/flatten.h"
 #include "geolens/lens/lens.h"
+#include "geolens/lens/lens_options.h"
 #include "geolens/lens/magnification.h"
-#include "geolens/lens/texture_map.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
-
-/// Which part of the image takes part in the solve.
-enum class Extent {
-  kGlobal,  ///< the whole image: the context everywhere gives way to the lens
-  /// a square patch of side 2 * extent_factor * size around the lenses (clipped to the image),
-  /// its border pinned; the rest of the image is the identity. The patch grid has `mesh`
-  /// vertices along its long side whatever the image size, so the cost depends on the lens.
-  kLocal,
-};
-Extent parse_extent(const std::string& name);  ///< "global" | "local"
-std::string to_string(Extent extent);
-
-/// What a lens magnifies and how (docs/design.md, "Focus lenses" and "Lens models").
-enum class LensModel {
-  /// The region is the focus: magnified as a whole by its zoom (a similarity, translated to fit
-  /// but not rotated), the context giving way within the lens's footprint, with its shape
-  /// distortion bounded, and unchanged beyond (focus_lens.h). The solved area is the footprints'
-  /// bounding box, so the mesh moves with the lens.
-  kFocus,
-  /// The paper's: the flattening keeps the shapes of the lifted triangles and the texture is
-  /// re-mapped harmonically onto the bump. A long region's lift is a ridge, magnified across
-  /// only.
-  kLift,
-  /// The lift read as a field of log magnification (Lifted::log_zoom): the flattening keeps
-  /// each planar triangle's shape scaled by it, the texture is not re-mapped. A region of any
-  /// shape reaches its zoom at its peak, junctions included; a thinner part asks for less
-  /// (log zoom grows with the local half-width), and a long thin arm still widens more than
-  /// it lengthens.
-  kField,
-  kAuto,  ///< kLift when every lens is a circle, else kField
-};
-LensModel parse_lens_model(const std::string& name);  ///< "focus" | "lift" | "field" | "auto"
-std::string to_string(LensModel model);
-/// The model that solves `lenses` with `model` asked: kAuto resolved, any other as it is.
-LensModel resolved_model(LensModel model, const std::vector<Lens>& lenses);
-
-struct LensOptions {
-  int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
-  /// kFocus: the grid is refined where the lens's start (focus_start) strays from linear over a
-  /// triangle by more than this, output pixels, or than 1/400 of the smallest region's reach
-  /// (>= 0; 0: not refined). A draft (LensSession) is not refined.
-  double mesh_tolerance = 0.2;
-  /// LensSession's drafts (a drag's frames) on a grid of this many vertices along the long side
-  /// instead of `mesh` (0: `mesh`; else in [4, 1000]).
-  int draft_mesh = 0;
-  Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
-  double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
-  LensModel model = LensModel::kFocus;
-  TextureWeights texture = TextureWeights::kCotan;
-  SubdivisionOptions subdivision;
-  FlattenOptions flatten;
-  /// kLift and kField: bump heights are calibrated until every lens's measured zoom is within
-  /// this relative tolerance of its request, or `max_calibration_solves` full solves were made.
-  double zoom_tolerance = 0.02;
-  int max_calibration_solves = 12;
-};
-
-/// Throws InvalidInput unless the options are in range.
-void validate(const LensOptions& options);
 
 /// Wall-clock milliseconds per stage, summed over the calibration solves.
 struct StageTimings {

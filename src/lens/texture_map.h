@@ -1,24 +1,15 @@
 #pragma once
-// Texture coordinates on the lifted mesh: a harmonic map onto the source image (paper 4.1).
+// Private: texture coordinates on the lifted mesh, a harmonic map onto the source image (paper
+// 4.1); its weights are an option (lens_options.h).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
+#include "geolens/lens/lens_options.h"
+
 namespace geolens {
-
-/// Edge weights of the discrete harmonic map, both computed on the 3D mesh.
-enum class TextureWeights {
-  kMeanValue,  ///< Floater 2003 mean value weights, the paper's choice; not symmetric
-  kCotan,      ///< cotangent weights (Pinkall-Polthier), symmetric; negative on obtuse angles
-  /// cotangent weights with negative ones set to 0: every weight >= 0, so (Tutte, Floater) the
-  /// map cannot fold where the fixed ring is convex; more distortion than kCotan at low zoom
-  kPositiveCotan,
-};
-
-TextureWeights parse_texture_weights(const std::string& name);  ///< "mvc" | "cotan" | "cotan+"
-std::string to_string(TextureWeights weights);
 
 /// Triangles of F whose texture coordinates (#V x 2) are inverted or degenerate.
 int count_folds(const Eigen::MatrixX2d& uv, const Eigen::MatrixX3i& F);

@@ -1,5 +1,6 @@
 #pragma once
-// Flattening the lifted mesh back to the plane with the local/global solver (paper section 5).
+// Private: flattening the lifted mesh back to the plane with the local/global solver (paper
+// section 5); its options and result are public (lens_options.h).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -9,76 +10,12 @@
 #include <vector>
 
 #include "geolens/core/solve_control.h"
+#include "geolens/lens/lens_options.h"
 
 namespace geolens {
 
 class DirichletSolver;
 class ThreadPool;  // core/thread_pool.h
-
-/// Per-edge weights of the global step.
-enum class FlattenWeights {
-  kPaper,  ///< (1 + h_m) A_m cot(theta): h_m the triangle's mean normalized height (level in
-           ///< [0, 1]), A_m its 3D area over the mean planar area
-  kCotan,  ///< cot(theta): the plain ARAP energy
-};
-
-/// The target transformation each triangle is fitted to in the local step, from the signed
-/// SVD J = U diag(s1, s2) V^T of the triangle's current Jacobian (standard -> current).
-enum class Metric {
-  /// The paper's Eq. 6: U diag(alpha (s1 - 1) + 1, alpha (s2 - 1) + 1) V^T. Equal to
-  /// (1 - alpha) R + alpha J, so it is a damped ARAP step with the ARAP fixed point for every
-  /// alpha < 1: it differs from ARAP only when stopped early (DESIGN decision 1).
-  kPaper,
-  /// A spectrum that keeps its effect at convergence: b U V^T with
-  /// b = (1 - alpha) + alpha (s1 + s2) / 2; alpha = 0 is rigid (ARAP), alpha = 1 the closest
-  /// similarity (ASAP, angle-preserving), after Liu et al. 2008.
-  kSpectrum,
-};
-
-/// The shape each triangle is asked to keep (its "standard triangle").
-enum class Standard {
-  kLifted,  ///< the lifted 3D triangle laid flat isometrically (paper Fig. 4)
-  /// the planar triangle scaled by exp of the mean `log_scale` of its corners: a prescribed
-  /// isotropic magnification (LensModel::kField)
-  kScaled,
-};
-
-/// Which image-border conditions the flattened mesh obeys.
-enum class Boundary {
-  kSliding,  ///< border vertices slide along their own side, corners fixed
-  kFixed,    ///< border vertices pinned where they were
-  kFree,     ///< one vertex pinned (translation); the result is later scaled to fit
-};
-
-FlattenWeights parse_flatten_weights(const std::string& name);  ///< "paper" | "cotan"
-Metric parse_metric(const std::string& name);                   ///< "paper" | "spectrum"
-Boundary parse_boundary(const std::string& name);               ///< "sliding" | "fixed" | "free"
-std::string to_string(FlattenWeights weights);
-std::string to_string(Metric metric);
-std::string to_string(Boundary boundary);
-
-struct FlattenOptions {
-  FlattenWeights weights = FlattenWeights::kPaper;
-  Metric metric = Metric::kPaper;
-  double alpha = 0.0;  ///< metric blend: [0, 1) for kPaper (the paper uses [0, 0.5]), [0, 1]
-                       ///< for kSpectrum
-  Boundary boundary = Boundary::kSliding;
-  Standard standard = Standard::kLifted;
-  double tolerance = 1e-3;   ///< stop when |E_k - E_k-1| <= tolerance * E_k-1 (paper: 0.1%)
-  int max_iterations = 100;  ///< cap on global steps, >= 1
-  /// Bound each step so no triangle changes orientation: the global step's result X' is taken
-  /// as X + s (X' - X) with s = min(1, 0.9 s_max), s_max the first s at which a triangle of the
-  /// current (flip-free) flattening would degenerate (after Smith and Schaefer 2015's
-  /// flip-preventing line search). The energy still never increases.
-  bool flip_safe = true;
-  /// Threads of the flattener's pool (the per-triangle steps, the x and y factorizations), the
-  /// calling thread included: 0 = one per hardware thread, 1 = the calling thread only, >= 0.
-  /// Results do not depend on it.
-  int threads = 0;
-};
-
-/// Throws InvalidInput unless the options are in range.
-void validate(const FlattenOptions& options);
 
 /// Per-vertex constraints of focus lenses (LensModel::kFocus), which replace the metric target:
 /// - a triangle whose three corners are in the focus of the same lens is asked to be its
@@ -95,14 +32,6 @@ struct FocusConstraints {
   Eigen::VectorXd anisotropy;  ///< #V bound K >= 1 on s1 / s2 outside the foci
   double focus_weight = 1000;  ///< > 0
   bool empty() const { return focus.empty(); }
-};
-
-struct FlattenResult {
-  Eigen::MatrixX2d X;          ///< #V x 2 flattened positions, pixels (before framing)
-  std::vector<double> energy;  ///< energy of the initial guess, then after each global step
-  int iterations = 0;          ///< global steps taken
-  int bounded_steps = 0;       ///< steps the flip-safe bound shortened
-  bool converged = false;      ///< the tolerance was met before the cap
 };
 
 /// The local/global flattener of one lifted mesh. Construction computes the standard triangles
