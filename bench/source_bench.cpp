@@ -18,8 +18,8 @@
 #include "geolens/lens/lens_session.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/render/render.h"
+#include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
-#include "geolens/source/tiled_source.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace {

@@ -12,8 +12,8 @@
 // A finding: a crash, a sanitizer report, an exception other than InvalidInput, a hang, an
 // allocation past libFuzzer's limit.
 #include "fuzz_support.h"
+#include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
-#include "geolens/source/tiled_source.h"
 #include "source/png_tile_folder.h"
 
 namespace {

@@ -11,7 +11,6 @@
 #include "arrays.h"
 #include "geolens/geometry/roi.h"
 #include "geolens/lens/lens.h"
-#include "geolens/lens/profile.h"
 
 namespace geolens::python {
 

@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/lens/magnification.h"
+#include "geolens/lens/lens.h"
 #include "geolens/warp/warp_map.h"
 
 namespace geolens::python {
 
 namespace py = pybind11;
 
-/// Magnification (lens/magnification.h) with its warp as a WarpMap, which owns the mesh and
+/// Magnification (lens/lens.h) with its warp as a WarpMap, which owns the mesh and
 /// maps points through it.
 struct MagnificationResult {
   explicit MagnificationResult(Magnification magnification);

@@ -7,9 +7,6 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/eval/comparison.h"
-#include "geolens/eval/comparison_images.h"
-#include "geolens/eval/comparison_report.h"
-#include "geolens/eval/footprint_sweep.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"

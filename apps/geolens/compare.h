@@ -30,7 +30,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args);
 /// NAME (geometric, zoom_in, fisheye, fisheye_smooth, bifocal, flattop_linear, flattop_cosine,
 /// power_ring): NAME.FORMAT (the output) and NAME_heatmap.FORMAT (its shape distortion with a
 /// scale), then panel.FORMAT (every method side by side around the lenses, labelled), report.json
-/// and report.md. With --sweep, one lens's footprint sweep instead (footprint_sweep.h): sweep.json,
+/// and report.md. With --sweep, one lens's footprint sweep instead (comparison.h): sweep.json,
 /// sweep.md and sweep.FORMAT. Returns the exit code; throws InvalidInput for bad input (an output
 /// file that is a folder or an input among it) before any work, and renames the files into place
 /// only once all are written.

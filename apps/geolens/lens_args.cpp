@@ -6,8 +6,8 @@
 #include <iostream>
 
 #include "geolens/core/errors.h"
+#include "geolens/lens/lens_options.h"
 #include "geolens/lens/lens_spec.h"
-#include "geolens/lens/unread_options.h"
 
 namespace geolens::cli {
 

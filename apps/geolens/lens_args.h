@@ -60,7 +60,7 @@ std::vector<LensSpecFile> lens_files(const LensArgs& args);
 std::pair<int, int> parse_size(const std::string& text);
 
 /// Prints a warning on stderr for each option set that the model solving `lenses` does not read
-/// (unread_options, lens/unread_options.h).
+/// (unread_options, lens/lens_options.h).
 void warn_about_unread_options(const LensOptions& options, const std::vector<Lens>& lenses);
 
 /// Prints a warning on stderr for each lens that does not fit where it is (the largest zoom

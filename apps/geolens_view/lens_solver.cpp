@@ -9,7 +9,7 @@
 #include "geolens/lens/classic_lens.h"
 #include "geolens/lens/lens_session.h"
 #include "geolens/render/render.h"
-#include "geolens/source/mip_pyramid.h"
+#include "geolens/source/source.h"
 
 namespace geolens::view {
 

@@ -8,7 +8,7 @@
 #include <iostream>
 
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/render/heatmap.h"
+#include "geolens/render/annotate.h"
 #include "script.h"
 
 namespace geolens::view {

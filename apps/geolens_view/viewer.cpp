@@ -15,7 +15,6 @@
 #include "geolens/lens/lens_spec.h"
 #include "geolens/measure/distortion.h"
 #include "geolens/render/annotate.h"
-#include "geolens/render/heatmap.h"
 #include "geolens/render/render.h"
 #include "geolens/render3d/camera.h"
 #include "geolens/source/source_file.h"

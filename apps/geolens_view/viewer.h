@@ -36,7 +36,7 @@ struct FrameMeasures {
 FrameMeasures measure_frame(const SolvedFrame& frame);
 
 /// The colour of each triangle in the shape-distortion heatmap, as `geolens compare` draws it
-/// (heatmap.h): heat_colour of its s1 / s2 - 1 over `max_value` (> 0), flipped triangles
+/// (annotate.h): heat_colour of its s1 / s2 - 1 over `max_value` (> 0), flipped triangles
 /// kFlippedColour.
 std::vector<std::array<uint8_t, 3>> heat_colours(const TriangleDistortion& triangles,
                                                  double max_value);

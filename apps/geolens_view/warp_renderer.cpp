@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 
 namespace geolens::view {
 

@@ -44,7 +44,7 @@ struct DrawSettings {
   int pane = 0;  ///< the mesh drawn, 0 or 1
   bool wireframe = false;
   /// The pane's heatmap (set_heat) instead of the picture: per triangle opacity x its colour +
-  /// (1 - opacity) x the picture's luminance, as heatmap() (heatmap.h) blends it.
+  /// (1 - opacity) x the picture's luminance, as heatmap() (annotate.h) blends it.
   bool heatmap = false;
   double heat_opacity = 0.75;
   /// Circles to outline: (centre x, centre y, radius), source pixels; at most kMaxOutlines.

@@ -1,5 +1,3 @@
-#include "geolens/eval/comparison_images.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -9,8 +7,8 @@
 
 #include "eval/fixed_text.h"
 #include "geolens/core/errors.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/render/annotate.h"
-#include "geolens/render/heatmap.h"
 #include "geolens/render/overlay.h"
 
 namespace geolens {

@@ -1,5 +1,3 @@
-#include "geolens/eval/comparison_report.h"
-
 #include <algorithm>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -8,6 +6,7 @@
 #include "eval/fixed_text.h"
 #include "eval/lens_json.h"
 #include "geolens/core/errors.h"
+#include "geolens/eval/comparison.h"
 
 namespace geolens {
 
@@ -103,7 +102,7 @@ std::string comparison_markdown(const Comparison& c, const std::string& title) {
     md << "| " << m.name << " | " << area_cell(m.regions.focus) << " | "
        << area_cell(m.regions.transition) << " | " << area_cell(m.regions.context) << " |\n";
   }
-  md << "\nPer lens, over the region given (focus_measure.h): zoom = mean magnification, "
+  md << "\nPer lens, over the region given (comparison.h): zoom = mean magnification, "
         "uniformity = max / min, shape distortion mean / max, footprint = radius of the disk of "
         "the same area as the source disturbed by more than 5 %, moved = the largest displacement "
         "beyond the footprint (px):\n\n";

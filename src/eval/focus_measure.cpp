@@ -1,5 +1,3 @@
-#include "geolens/eval/focus_measure.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +6,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/warp/warp_map.h"
 #include "lens/focus_lens.h"
 

@@ -1,15 +1,13 @@
-#include "geolens/eval/footprint_sweep.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 
 #include "geolens/core/errors.h"
-#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/lens/classic_lens.h"
 #include "geolens/measure/distortion.h"
-#include "geolens/render/heatmap.h"
+#include "geolens/render/annotate.h"
 #include "lens/focus_lens.h"
 
 namespace geolens {

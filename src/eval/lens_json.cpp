@@ -1,6 +1,6 @@
 #include "eval/lens_json.h"
 
-#include "geolens/lens/unread_options.h"
+#include "geolens/lens/lens_options.h"
 #include "lens/focus_lens.h"
 
 namespace geolens {

@@ -1,10 +1,10 @@
 #pragma once
 // Private to eval/: one lens as JSON, the same object in a run's stats (run_stats.h) and in a
-// comparison's report (comparison_report.h).
+// comparison's report (comparison.h).
 
 #include <nlohmann/json.hpp>
 
-#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/lens/geometric_lens.h"
 
 namespace geolens {

@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/lens_json.h"
-#include "geolens/eval/focus_measure.h"
-#include "geolens/lens/unread_options.h"
+#include "geolens/eval/comparison.h"
+#include "geolens/lens/lens_options.h"
 
 namespace geolens {
 
@@ -23,7 +23,7 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
   stats["texture_fallback"] = result.texture_fallback;
   stats["flipped"] = summary.flipped;
   stats["model"] = to_string(result.model);
-  // Only what the model read: an option it does not (unread_options.h) is left out.
+  // Only what the model read: an option it does not (lens_options.h) is left out.
   nlohmann::json& echoed = stats["options"];
   echoed = {{"mesh", options.mesh},
             {"model", to_string(options.model)},

@@ -1,10 +1,9 @@
-#include "geolens/lens/profile.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "core/enum_names.h"
 #include "geolens/core/errors.h"
+#include "geolens/lens/lens.h"
 
 namespace geolens {
 

@@ -1,6 +1,6 @@
-#include "geolens/lens/unread_options.h"
-
 #include <algorithm>
+
+#include "geolens/lens/lens_options.h"
 
 namespace geolens {
 namespace {

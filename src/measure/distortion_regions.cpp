@@ -1,5 +1,3 @@
-#include "geolens/measure/distortion_regions.h"
-
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
@@ -8,6 +6,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/measure/distortion.h"
 #include "numerics/svd2.h"
 
 namespace geolens {

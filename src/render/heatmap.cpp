@@ -1,5 +1,3 @@
-#include "geolens/render/heatmap.h"
-
 #include <stb_easy_font.h>
 
 #include <algorithm>
@@ -10,6 +8,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/render/annotate.h"
 #include "render/rasterize.h"
 
 namespace geolens {

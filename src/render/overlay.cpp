@@ -7,7 +7,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
-#include "geolens/render/heatmap.h"
+#include "geolens/render/annotate.h"
 #include "geometry/polygon.h"
 
 namespace geolens {

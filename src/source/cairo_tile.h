@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "geolens/io/image.h"
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 
 namespace geolens {
 

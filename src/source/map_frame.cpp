@@ -1,10 +1,9 @@
-#include "geolens/source/map_frame.h"
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include "geolens/core/errors.h"
+#include "geolens/source/map_style.h"
 
 namespace geolens {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
+#include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
-#include "geolens/source/tiled_source.h"
 #include "render3d/mesh_renderer.h"
 
 namespace geolens {

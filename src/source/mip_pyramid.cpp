@@ -1,11 +1,10 @@
-#include "geolens/source/mip_pyramid.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "geolens/source/source.h"
 #include "source/downsample.h"
 #include "source/with_channels.h"
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 
 namespace geolens {
 

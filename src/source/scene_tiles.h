@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "geolens/render3d/camera.h"
+#include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
-#include "geolens/source/tiled_source.h"
 
 namespace geolens {
 

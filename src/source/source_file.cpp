@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "geolens/io/image.h"
-#include "geolens/source/mip_pyramid.h"
+#include "geolens/source/source.h"
 #include "render3d/nrrd_file.h"
 #include "source/level_list.h"
 #include "source/mesh_source.h"

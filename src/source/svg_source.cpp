@@ -12,7 +12,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 #include "source/cairo_tile.h"
 
 namespace geolens {

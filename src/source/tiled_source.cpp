@@ -1,5 +1,3 @@
-#include "geolens/source/tiled_source.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/source/source.h"
 #include "source/downsample.h"
 
 namespace geolens {

@@ -16,8 +16,8 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/geojson.h"
-#include "geolens/source/map_frame.h"
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/map_style.h"
+#include "geolens/source/source.h"
 #include "source/cairo_tile.h"
 #include "source/map_labels.h"
 

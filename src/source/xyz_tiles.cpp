@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 #include "source/convert_channels.h"
 #include "source/downsample.h"
 

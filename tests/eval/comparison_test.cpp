@@ -18,9 +18,6 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/eval/comparison_images.h"
-#include "geolens/eval/comparison_report.h"
-#include "geolens/eval/footprint_sweep.h"
 #include "geolens/eval/run_stats.h"
 #include "geolens/lens/classic_lens.h"
 #include "lens/focus_lens.h"

@@ -14,8 +14,7 @@
 
 #include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "geolens/eval/focus_measure.h"
-#include "geolens/eval/footprint_sweep.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/geometry/grid.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/classic_lens.h"

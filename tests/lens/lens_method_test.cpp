@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/measure/distortion.h"
 
 namespace geolens {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/eval/focus_measure.h"
+#include "geolens/eval/comparison.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_method.h"
 #include "geolens/lens/lens_worker.h"

@@ -1,8 +1,7 @@
-#include "geolens/lens/profile.h"
-
 #include <gtest/gtest.h>
 
 #include "geolens/core/errors.h"
+#include "geolens/lens/lens.h"
 
 namespace geolens {
 namespace {

@@ -2,13 +2,14 @@
 // listed exactly when setting it leaves the warp unchanged, for every model and both kinds of
 // region.
 
-#include "geolens/lens/unread_options.h"
-
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_options.h"
 
 namespace geolens {
 namespace {

@@ -1,8 +1,6 @@
 // Region statistics and the Eq. 7 energy: zones of the right size, exact figures for affine
 // warps, the occluded area of a warp pushed off screen, and Eq. 7 against a direct edge sum.
 
-#include "geolens/measure/distortion_regions.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

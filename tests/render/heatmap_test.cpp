@@ -1,13 +1,12 @@
 // Heatmaps: the colour scale's ends, triangles drawn in their value's colour over the background's
 // grey, flipped triangles black, the legend strip, and text.
 
-#include "geolens/render/heatmap.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "geolens/core/errors.h"
+#include "geolens/render/annotate.h"
 #include "geolens/render/render.h"
 #include "support/test_data.h"
 

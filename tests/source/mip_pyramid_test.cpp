@@ -1,10 +1,9 @@
 // The mip pyramid as a Source (its levels and sampling are tested in render/render_test.cpp).
 
-#include "geolens/source/mip_pyramid.h"
-
 #include <gtest/gtest.h>
 
 #include "geolens/core/errors.h"
+#include "geolens/source/source.h"
 #include "source/downsample.h"
 
 using geolens::Image;

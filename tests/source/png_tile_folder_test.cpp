@@ -7,8 +7,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/mip_pyramid.h"
-#include "geolens/source/tiled_source.h"
+#include "geolens/source/source.h"
 #include "support/scratch_folder.h"
 #include "support/test_data.h"
 

@@ -10,8 +10,6 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
-#include "geolens/source/mip_pyramid.h"
-#include "geolens/source/tiled_source.h"
 #include "support/test_data.h"
 
 using geolens::Image;

@@ -12,7 +12,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/render/render.h"
-#include "geolens/source/mip_pyramid.h"
+#include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"
 #include "support/scratch_folder.h"

@@ -1,8 +1,6 @@
 // The tiled source: a 32768 x 32768 procedural source rendered through it, its cache budget,
 // agreement with the in-memory MipPyramid, threads, errors.
 
-#include "geolens/source/tiled_source.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +14,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/render/render.h"
-#include "geolens/source/mip_pyramid.h"
+#include "geolens/source/source.h"
 #include "geolens/warp/warp_mesh.h"
 #include "support/test_data.h"
 

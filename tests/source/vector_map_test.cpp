@@ -20,7 +20,6 @@
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_spec.h"
 #include "geolens/render/render.h"
-#include "geolens/source/map_frame.h"
 #include "geolens/source/map_style.h"
 #include "geolens/warp/warp_map.h"
 #include "geolens/warp/warp_mesh.h"

@@ -19,7 +19,7 @@
 
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
-#include "geolens/render/heatmap.h"
+#include "geolens/render/annotate.h"
 #include "geolens/render/render.h"
 #include "geometry/polygon.h"
 #include "support/scratch_folder.h"
@@ -406,7 +406,7 @@ TEST_F(View, APolygonLensIsOutlinedWhereThePictureShowsIt) {
 TEST_F(View, TheHeatmapColoursShapeDistortionWithTheColoursOfCompare) {
   const std::string lens = "--lens circle:160,120,24:2.5 ";
   const Image heat = shot("heat.png", lens, "set heatmap on\n");
-  // Every pixel as heatmap() (heatmap.h) draws a distortion of 0: 0.75 x heat_colour(0) over
+  // Every pixel as heatmap() (annotate.h) draws a distortion of 0: 0.75 x heat_colour(0) over
   // the luminance.
   Image zero(kWidth, kHeight, 3);
   const std::array<uint8_t, 3> blue = heat_colour(0);

@@ -1,19 +1,44 @@
 #pragma once
 // The geometric lens measured against the classic lenses on the same footing: it is solved, the
 // seven classic lenses are matched to the zoom it measured, and every warp is measured by the
-// same code (what `geolens compare` reports; its pictures are in comparison_images.h, its text
-// in comparison_report.h).
+// same code (what `geolens compare` reports), its pictures and its text, and the footprint sweep.
 
 #include <string>
 #include <vector>
 
-#include "geolens/eval/focus_measure.h"
+#include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens.h"
 #include "geolens/measure/distortion.h"
-#include "geolens/measure/distortion_regions.h"
+#include "geolens/render/render.h"
+#include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {
+
+// What a user sees of each lens: how its focus is magnified, how far the context moves.
+
+/// Per lens, measured on a WarpMesh whose screen is framed at the source's size.
+struct FocusMeasure {
+  /// Over the focus (the triangles whose source centroid lies in the region): the area-weighted
+  /// mean magnification, max / min magnification (1 = uniform), and the shape distortion
+  /// s1 / s2 - 1, area-weighted mean and max.
+  double zoom = 0, uniformity = 0, shape_mean = 0, shape_max = 0;
+  /// sqrt(A / pi), A the source area (pixels^2) of the triangles nearest this lens (by distance
+  /// to its region) whose magnification departs from 1 by more than 5 % or whose shape
+  /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
+  double footprint_radius = 0;
+  /// The largest |screen - source| (pixels) of a mesh vertex nearest this lens and beyond every
+  /// footprint (outside every focus group's disk of radius reach + margin, focus_lens.h): 0
+  /// when everything beyond the footprints is left in place.
+  double displacement_beyond_footprint = 0;
+};
+
+/// Measures every lens on `warp` (its source in source pixels, its screen framed at the source's
+/// size), with `measures` = measure_triangles(warp). A region that holds no triangle centroid is
+/// measured on the triangle under its peak. Throws InvalidInput if that lies in no triangle.
+std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDistortion& measures,
+                                       const std::vector<Lens>& lenses);
 
 /// The radius of the classic lenses matched to `lens`, and of the disk its regions are measured
 /// in (measure_regions): for the focus model its footprint, footprint_ratio(lens) x reach
@@ -80,5 +105,97 @@ Comparison compare_lenses(int width, int height, const std::vector<Lens>& lenses
 /// The shape distortion drawn red by default: the largest s1 / s2 - 1 over every method's
 /// measured triangles, or 1 if that is 0.
 double comparison_heat_max(const Comparison& comparison);
+
+// The trade-off a lens pays: its largest shape distortion against its footprint, for the focus
+// lens and every classic lens of the same focus and footprint, with the radial bound.
+
+/// One method at one footprint ratio.
+struct SweepPoint {
+  std::string method;           ///< "geometric" or a classic lens's name (classic_lens.h)
+  double ratio = 0;             ///< footprint ratio F
+  double zoom = 0;              ///< mean magnification over the lens's region
+  double uniformity = 0;        ///< max / min magnification over the region
+  double shape_max = 0;         ///< largest s1 / s2 - 1 of the whole warp
+  double footprint_radius = 0;  ///< pixels, FocusMeasure
+};
+
+struct Sweep {
+  std::vector<double> ratios;     ///< the footprint ratios swept
+  std::vector<double> bound;      ///< per ratio, radial_distortion_bound at the zoom reached
+  std::vector<double> rim_bound;  ///< per ratio, rim_distortion_bound at the zoom reached
+  std::vector<SweepPoint> points;
+};
+
+/// The footprint ratios a sweep of a lens of `zoom` takes by default (`geolens compare --sweep`):
+/// zoom + 1, 1.5, 2, 3 and 4 x zoom, ascending, without repeats.
+std::vector<double> sweep_ratios(double zoom);
+
+/// Solves `lens` with the focus model (its other options from `options`) at every footprint
+/// ratio in `ratios` (each > the lens's zoom) on a width x height image, and, for a circle, every
+/// classic lens with the footprint as radius and a flat top of the region's size, matched to the
+/// zoom the focus lens reached (classic_lens.h; `baseline_mesh` vertices along the long side).
+/// Throws InvalidInput for an invalid lens or ratio.
+Sweep footprint_sweep(double width, double height, const Lens& lens, LensOptions options,
+                      const std::vector<double>& ratios, int baseline_mesh = 200);
+
+/// A plot of the sweep: largest shape distortion against the footprint ratio, one polyline per
+/// method (its points filled where the focus is uniform, max / min <= 1.01, hollow otherwise)
+/// and the bound in black; a legend. RGB, width x height pixels (>= 320 x 240).
+Image plot_sweep(const Sweep& sweep, int width = 720, int height = 480);
+
+// The pictures of a comparison: each method's output and shape-distortion
+// heat map, and the panel of every method side by side around the lenses.
+
+/// The panel tile side must be in [64, 1024] pixels; throws InvalidInput naming `function`.
+void require_panel_tile(int tile, const char* function);
+
+/// The method's output: its warp rendered from `source` (the comparison's, framed at its size;
+/// render(WarpMesh, SourceFile, RenderOptions)) at the comparison's size, RGB.
+Image comparison_output(const Comparison& comparison, const ComparedMethod& method,
+                        const SourceFile& source);
+
+/// The method's shape distortion s1 / s2 - 1 per triangle over `output` (comparison_output),
+/// blue 0 to red `heat_max` (> 0), flipped triangles black, with a scale titled
+/// "NAME: shape distortion s1/s2 - 1" below (heatmap, annotate.h): RGB, the output's width, taller.
+Image comparison_heatmap(const ComparedMethod& method, const Image& output, double heat_max);
+
+/// The input (lenses outlined, a few notes below), then every method: a cell each with four label
+/// lines (name, zoom at the first lens, largest shape distortion, area hidden and flips), its
+/// output and its heat map below (tile x tile each); four cells per row, the colour scale
+/// (0 to `heat_max`, > 0) below. Every picture shows the same square, 1.3 times the extent of the
+/// targets' disks. RGB, 4 (tile + 6) + 6 pixels wide; rows = ceil((methods + 1) / 4) of
+/// 4 L + 2 tile + 24 pixels (L = 22 for tile >= 176, else 11), plus 6 pixels and the scale.
+/// `source` as for comparison_output. Throws InvalidInput for `tile` outside [64, 1024].
+Image comparison_panel(const Comparison& comparison, const SourceFile& source, double heat_max,
+                       int tile = 256);
+
+// A comparison and a footprint sweep as text: JSON (2-space
+// indented, newline at the end) and Markdown, what `geolens compare` writes.
+
+/// {"methods": [...]}, one object per method in order: `name`, `zoom_center` (zoom_measured[0]),
+/// `focus_uniformity` (the largest over the lenses of `focus.uniformity` below: over the region
+/// given), `distortion` {`focus`, `transition`,
+/// `context`, `overall`: {`mean`, `max`} shape distortion, null in a zone with no triangle},
+/// `occluded_percent`, `flipped`, and `lenses`: per lens the same object as run_stats_json's
+/// lenses without `height` and `zoom_fit` (`kind`, `bbox`, `peak`, `size`, `center` and
+/// `radius` for circles, `profile`, `zoom_requested`, `zoom_measured` on this method's warp,
+/// `footprint`, `focus` {`zoom`, `uniformity`, `shape_mean`, `shape_max`}, `footprint_radius`,
+/// `displacement_beyond_footprint`).
+std::string comparison_json(const Comparison& comparison);
+
+/// The same as Markdown under the heading "# geolens compare: `title`" (the input's name): per
+/// lens its disk and zooms, the shape distortion per zone, the area distortion per zone, the
+/// per-lens focus measures, and the geometric lens's Eq. 7 energy.
+std::string comparison_markdown(const Comparison& comparison, const std::string& title);
+
+/// {"points": [...]}, per point of the sweep (in its order): `method`, `ratio`, `zoom`,
+/// `uniformity`, `shape_max`, `footprint_radius` and the ratio's `bound`.
+std::string sweep_json(const Sweep& sweep);
+
+/// The sweep as a Markdown table under "# geolens compare --sweep: `title`": per ratio the zoom
+/// the geometric lens reached, the bound, and each method's largest shape distortion (its focus
+/// uniformity in brackets where above 1.01). Throws InvalidInput if a ratio has no "geometric"
+/// point.
+std::string sweep_markdown(const Sweep& sweep, const std::string& title);
 
 }  // namespace geolens

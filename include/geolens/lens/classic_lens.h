@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "geolens/geometry/grid.h"
-#include "geolens/lens/magnification.h"
-#include "geolens/measure/distortion_regions.h"
+#include "geolens/lens/lens.h"
+#include "geolens/measure/distortion.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {

@@ -12,7 +12,6 @@
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/lens.h"
 #include "geolens/lens/lens_options.h"
-#include "geolens/lens/magnification.h"
 #include "geolens/warp/warp_mesh.h"
 
 namespace geolens {

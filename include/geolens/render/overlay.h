@@ -17,7 +17,7 @@ struct OverlayStyle {
   std::array<uint8_t, 3> label_colour = {15, 15, 15};   ///< text, on a white halo
   double line_width = 2.0;                              ///< stroke width, pixels, > 0
   double point_radius = 3.5;                            ///< dot radius, pixels, > 0
-  /// Label size in pixels per font unit (heatmap.h's stroke font: capitals 7 units tall), >= 0;
+  /// Label size in pixels per font unit (annotate.h's stroke font: capitals 7 units tall), >= 0;
   /// 0 draws no labels.
   int label_scale = 2;
   std::string label_property = "name";  ///< the string property a label shows

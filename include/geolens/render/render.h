@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "geolens/io/image.h"
-#include "geolens/source/mip_pyramid.h"  // the usual source; callers build it next to render()
+#include "geolens/source/source.h"  // the usual source; callers build it next to render()
 #include "geolens/source/source.h"
 #include "geolens/source/source_file.h"
 #include "geolens/warp/warp_mesh.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geolens/io/image.h"
-#include "geolens/source/map_frame.h"
+#include "geolens/source/map_style.h"
 #include "geolens/source/source.h"
 #include "geolens/warp/warp_map.h"
 
@@ -50,7 +50,7 @@ struct SourceFile {
   /// framed at its size (framed_warp_map, warp/warp_map.h): what must stay upright and unwarped,
   /// such as a vector map's labels. May be empty; the output is RGB or RGBA.
   std::function<void(Image& output, const WarpMap& map)> overlay;
-  /// A vector map's: where longitude and latitude lie in the frame (map_frame.h), so data in
+  /// A vector map's: where longitude and latitude lie in the frame (map_style.h), so data in
   /// degrees can be placed on it; empty for every other kind.
   std::optional<MapFrame> map_frame;
 };
