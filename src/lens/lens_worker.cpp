@@ -1,7 +1,11 @@
 #include "geolens/lens/lens_worker.h"
 
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <exception>
+#include <mutex>
+#include <thread>
 #include <utility>
 
 #include "geolens/core/errors.h"
@@ -30,70 +34,105 @@ LensJob session_job(std::shared_ptr<LensSession> session, bool draft) {
 
 }  // namespace
 
+struct LensWorker::Impl {
+  Impl(LensJob job, LensJob draft, std::function<void(const SolveProgress&)> progress,
+       std::chrono::milliseconds settle)
+      : job_(std::move(job)),
+        draft_(std::move(draft)),
+        settle_(settle),
+        progress_(std::move(progress)) {}
+
+  void run();
+  // Runs `job` on `lenses` for `request` and makes its answer (or its error) the latest;
+  // returns whether the answer is a draft.
+  bool publish(std::uint64_t request, const LensJob& job, const std::vector<Lens>& lenses);
+
+  const LensJob job_;
+  const LensJob draft_;  // a session's drafts (empty for another job)
+  const std::chrono::milliseconds settle_;
+  const std::function<void(const SolveProgress&)> progress_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::vector<Lens> waiting_;
+  std::uint64_t submitted_ = 0, waiting_request_ = 0;  // waiting_request_ 0: none waits
+  bool busy_ = false, stop_ = false;
+  bool refining_ = false;  // solving in full a request already shown as a draft
+  std::atomic<bool> cancel_{false};
+  LensFrame latest_;
+  std::thread thread_;  // started once every member above exists
+};
+
 LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress,
-                       std::chrono::milliseconds settle)
-    : settle_(settle), progress_(std::move(progress)) {
+                       std::chrono::milliseconds settle) {
   auto shared = std::make_shared<LensSession>(std::move(session));
-  job_ = session_job(shared, false);
-  draft_ = session_job(shared, true);
-  thread_ = std::thread([this] { run(); });
+  impl_ = std::make_unique<Impl>(session_job(shared, false), session_job(shared, true),
+                                 std::move(progress), settle);
+  impl_->thread_ = std::thread([impl = impl_.get()] { impl->run(); });
 }
 
-LensWorker::LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress)
-    : job_(std::move(job)), progress_(std::move(progress)) {
-  require(bool(job_), "LensWorker", "the job is empty");
-  thread_ = std::thread([this] { run(); });
+LensWorker::LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress) {
+  require(bool(job), "LensWorker", "the job is empty");
+  impl_ = std::make_unique<Impl>(std::move(job), nullptr, std::move(progress), kSettle);
+  impl_->thread_ = std::thread([impl = impl_.get()] { impl->run(); });
 }
 
 LensWorker::~LensWorker() {
+  Impl& w = *impl_;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-    cancel_ = true;
+    std::lock_guard<std::mutex> lock(w.mutex_);
+    w.stop_ = true;
+    w.cancel_ = true;
   }
-  wake_.notify_all();
-  thread_.join();
+  w.wake_.notify_all();
+  w.thread_.join();
 }
 
 std::uint64_t LensWorker::submit(std::vector<Lens> lenses) {
+  Impl& w = *impl_;
   std::uint64_t request;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    waiting_ = std::move(lenses);
-    request = waiting_request_ = ++submitted_;
-    if (refining_) cancel_ = true;  // a full frame of an older request: not worth finishing
+    std::lock_guard<std::mutex> lock(w.mutex_);
+    w.waiting_ = std::move(lenses);
+    request = w.waiting_request_ = ++w.submitted_;
+    if (w.refining_) w.cancel_ = true;  // a full frame of an older request: not worth finishing
   }
-  wake_.notify_all();
+  w.wake_.notify_all();
   return request;
 }
 
 void LensWorker::cancel() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  waiting_request_ = 0;
-  if (busy_) cancel_ = true;
-  idle_.notify_all();
-  wake_.notify_all();  // a draft waiting to settle
+  Impl& w = *impl_;
+  std::lock_guard<std::mutex> lock(w.mutex_);
+  w.waiting_request_ = 0;
+  if (w.busy_) w.cancel_ = true;
+  w.idle_.notify_all();
+  w.wake_.notify_all();  // a draft waiting to settle
 }
 
 LensFrame LensWorker::latest() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return latest_;
+  std::lock_guard<std::mutex> lock(impl_->mutex_);
+  return impl_->latest_;
 }
 
 bool LensWorker::wait_for(std::uint64_t request, std::chrono::milliseconds timeout) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  auto answered = [&] { return latest_.request >= request || latest_.failed_request >= request; };
-  idle_.wait_for(lock, timeout, [&] { return answered() || (!busy_ && waiting_request_ == 0); });
+  Impl& w = *impl_;
+  std::unique_lock<std::mutex> lock(w.mutex_);
+  auto answered = [&] {
+    return w.latest_.request >= request || w.latest_.failed_request >= request;
+  };
+  w.idle_.wait_for(lock, timeout,
+                   [&] { return answered() || (!w.busy_ && w.waiting_request_ == 0); });
   return answered();
 }
 
 void LensWorker::wait_idle() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  idle_.wait(lock, [this] { return !busy_ && waiting_request_ == 0; });
+  Impl& w = *impl_;
+  std::unique_lock<std::mutex> lock(w.mutex_);
+  w.idle_.wait(lock, [&w] { return !w.busy_ && w.waiting_request_ == 0; });
 }
 
-bool LensWorker::publish(std::uint64_t request, const LensJob& job,
-                         const std::vector<Lens>& lenses) {
+bool LensWorker::Impl::publish(std::uint64_t request, const LensJob& job,
+                               const std::vector<Lens>& lenses) {
   SolveControl control{&cancel_, progress_};
   const auto start = std::chrono::steady_clock::now();
   std::shared_ptr<const Magnification> result;
@@ -126,7 +165,7 @@ bool LensWorker::publish(std::uint64_t request, const LensJob& job,
   return draft;
 }
 
-void LensWorker::run() {
+void LensWorker::Impl::run() {
   for (;;) {
     std::vector<Lens> lenses;
     std::uint64_t request;

@@ -1,15 +1,11 @@
 #pragma once
 // A LensSession on its own thread, for a UI loop that must not wait for a solve.
 
-#include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "geolens/core/solve_control.h"
@@ -79,24 +75,8 @@ class LensWorker {
   bool wait_for(std::uint64_t request, std::chrono::milliseconds timeout);
 
  private:
-  void run();
-  // Runs `job` on `lenses` for `request` and makes its answer (or its error) the latest;
-  // returns whether the answer is a draft.
-  bool publish(std::uint64_t request, const LensJob& job, const std::vector<Lens>& lenses);
-
-  LensJob job_;
-  LensJob draft_;  // a session's drafts (empty for another job)
-  std::chrono::milliseconds settle_ = kSettle;
-  std::function<void(const SolveProgress&)> progress_;
-  mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::vector<Lens> waiting_;
-  std::uint64_t submitted_ = 0, waiting_request_ = 0;  // waiting_request_ 0: none waits
-  bool busy_ = false, stop_ = false;
-  bool refining_ = false;  // solving in full a request already shown as a draft
-  std::atomic<bool> cancel_{false};
-  LensFrame latest_;
-  std::thread thread_;  // started by the constructor, once every member above exists
+  struct Impl;  // the thread, the waiting request and the latest frame (lens_worker.cpp)
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace geolens
