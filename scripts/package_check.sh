@@ -4,8 +4,9 @@
 # prefix twice, with find_package(geolens CONFIG) and with pkg-config alone, runs the four
 # programs and the installed CLI, and checks that all four print the same; the same for
 # examples/drag_session against the lens engine alone (geolens::lens, geolens-lens.pc), which must
-# name and load none of the libraries the readers and renderers need; and every installed header
-# compiles alone. Assumes
+# name and load none of the libraries the readers and renderers need; each module's pkg-config
+# file names only what that module and those below it need (geolens-io no cairo or librsvg); and
+# every installed header compiles alone. Assumes
 # scripts/setup.sh has installed the packages; everything is built in a temporary folder, removed
 # at the end (GEOLENS_PACKAGE_KEEP=1 keeps it). Stops at the first error, naming the step.
 set -euo pipefail
@@ -82,11 +83,21 @@ for kind in shared static; do
     -o "$work/drag-pc-$kind" $lens_flags -Wl,-rpath,"$libdir"
   outside="spng|jpeg|cairo|rsvg|nifti|znz|tinyobj|libz\.|-lz\b|nlohmann|stb"
   if grep -Eq "$outside" <<<"$lens_flags"; then fail "$kind: geolens-lens names $lens_flags"; fi
+  export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+  for module in io sources render eval; do
+    "${query[@]}" "geolens-$module" >"$work/pc-$module-$kind.txt" ||
+      fail "$kind: ${query[*]} geolens-$module"
+  done
+  unset PKG_CONFIG_PATH
+  if grep -Eq "cairo|rsvg" "$work/pc-io-$kind.txt"; then
+    fail "$kind: geolens-io names $(cat "$work/pc-io-$kind.txt")"
+  fi
   for exe in "$work/drag-$kind/drag_session" "$work/drag-pc-$kind"; do
     "$exe" > "$work/drag-out-$kind-$(basename "$exe").txt" || fail "$exe failed"
     libraries=$(ldd "$exe")
-    if grep -Eq "$outside|libgeolens\.so" <<<"$libraries"; then
-      fail "$exe, which solves lenses only, loads: $(grep -E "$outside|libgeolens\.so" <<<"$libraries")"
+    modules="libgeolens_(io|sources|render|eval)\.so"
+    if grep -Eq "$outside|$modules" <<<"$libraries"; then
+      fail "$exe, which solves lenses only, loads: $(grep -E "$outside|$modules" <<<"$libraries")"
     fi
     if [ "$kind" = shared ]; then
       grep -q "libgeolens_lens\.so.* => $prefix/" <<<"$libraries" ||
@@ -94,12 +105,18 @@ for kind in shared static; do
     fi
   done
 
-  # The shared consumers load the installed library; the static ones need none.
+  # The shared consumers load the installed modules they use (the lens engine and the renderer,
+  # and any other only from $prefix); the static ones need none.
   for exe in "$work/consumer-$kind/consumer" "$work/consumer-pc-$kind"; do
     libraries=$(ldd "$exe")
     if [ "$kind" = shared ]; then
-      grep -q "libgeolens\.so.* => $prefix/" <<<"$libraries" ||
-        fail "$exe does not load libgeolens.so from $prefix"
+      for module in lens render; do
+        grep -q "libgeolens_$module\.so.* => $prefix/" <<<"$libraries" ||
+          fail "$exe does not load libgeolens_$module.so from $prefix"
+      done
+      if grep "libgeolens" <<<"$libraries" | grep -vq " => $prefix/"; then
+        fail "$exe loads a libgeolens from outside $prefix: $(grep libgeolens <<<"$libraries")"
+      fi
     elif grep -q libgeolens <<<"$libraries"; then
       fail "$exe loads a shared libgeolens"
     fi
