@@ -14,6 +14,7 @@
 # SVG and vector-map sources: librsvg (rasterizes SVG per tile), cairo (draws maps and labels
 # anti-aliased). Not installed here: libmagics++-data (170 MB), whose Natural Earth shapefiles
 # examples/europe.geojson was converted from once (scripts/natural_earth_to_geojson.py).
+# The API reference (`--target docs`, ctest's api_docs): doxygen.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev
@@ -21,7 +22,7 @@ packages=(build-essential cmake pkg-config libeigen3-dev libcli11-dev nlohmann-j
           libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev xvfb xauth libgl1-mesa-dri
           pybind11-dev python3-dev python3-numpy python3-pytest
           libtinyobjloader-dev libnifti2-dev zlib1g-dev
-          librsvg2-dev libcairo2-dev)
+          librsvg2-dev libcairo2-dev doxygen)
 bash scripts/install_packages.sh "${packages[@]}"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3
 cmake --build build -j"$(bash scripts/jobs.sh)"

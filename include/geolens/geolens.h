@@ -3,6 +3,12 @@
 // A program that needs only the lens engine (geolens::lens) includes the headers of core,
 // numerics, geometry, warp, measure and lens it uses instead.
 
+/// \namespace geolens
+/// Everything geolens declares. Positions are pixels, origin top-left, y down: source pixels in
+/// the image a lens magnifies, screen pixels in the output it is shown in; a WarpMesh maps one to
+/// the other. Errors are the exceptions of core/errors.h: InvalidInput for what a caller passed,
+/// IoError, SolverError and Cancelled for what failed or was stopped at run time.
+
 #include "geolens/core/errors.h"
 #include "geolens/core/solve_control.h"
 #include "geolens/eval/comparison.h"

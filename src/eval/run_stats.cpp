@@ -45,7 +45,7 @@ std::string run_stats_json(const std::vector<Lens>& lenses, const LensOptions& o
   nlohmann::json list = nlohmann::json::array();
   for (size_t k = 0; k < lenses.size(); ++k) {
     nlohmann::json lens = lens_json(lenses[k], result.zoom_measured[k], foci[k], result.model);
-    lens["height"] = result.heights[k];
+    if (k < result.lift_heights_px.size()) lens["height"] = result.lift_heights_px[k];
     if (k < result.zoom_fits.size()) lens["zoom_fit"] = result.zoom_fits[k];
     if (k < result.zoom_fit_reasons.size()) lens["zoom_fit_reason"] = result.zoom_fit_reasons[k];
     list.push_back(lens);

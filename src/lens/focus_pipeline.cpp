@@ -308,7 +308,7 @@ LensResult FocusPipeline::solve_once(const Eigen::AlignedBox2d& box,
   const auto start = Clock::now();
   LensResult r;
   r.model = LensModel::kFocus;
-  r.heights = h;
+  r.focus_log_zooms = h;
   r.mesh = mesh;
   r.box = box;
   // The focus field read as a lift (for --export-mesh): z = log zoom times the solved area's long
@@ -327,7 +327,7 @@ LensResult FocusPipeline::solve_once(const Eigen::AlignedBox2d& box,
     lifted.inside[i] = focus.constraints.focus[i] >= 0;
   r.timings.lift = ms_since(start);
   // The texture is the mesh itself: the focus magnifies the planar region.
-  auto t = Clock::now();
+  const auto t = Clock::now();
   r.warp.source = r.mesh.V;
   r.timings.texture = ms_since(t);
 
@@ -340,16 +340,11 @@ LensResult FocusPipeline::solve_once(const Eigen::AlignedBox2d& box,
   prepare_flattener(lifted, focus.constraints, options, r, cache);
 
   // The start is the focus lens's own (its ring), better than any prediction.
-  t = Clock::now();
-  const SolveControl progress = numbered(control, solve);
-  r.flattening = flatten_focus(*cache.flattener, r.mesh, lenses, focus, cell, band, c_.width,
-                               c_.height, *c_.pool, &progress);
-  cache.predicted.resize(0, 2);
-  cache.flat = r.flattening.X;
-  r.timings.iterate = ms_since(t);
-
-  finish(lenses, lifted, options.boundary, r);
-  r.timings.total = ms_since(start);
+  const auto flatten = [&](const SolveControl& progress) {
+    return flatten_focus(*cache.flattener, r.mesh, lenses, focus, cell, band, c_.width, c_.height,
+                         *c_.pool, &progress);
+  };
+  flatten_and_finish(flatten, lenses, lifted, options.boundary, control, solve, start, cache, r);
   return r;
 }
 

@@ -45,6 +45,9 @@ const LensOptions& GeometricLens::options() const { return impl_->pipeline->cont
 
 LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
                                              const std::vector<double>& heights) const {
+  require(heights.size() == lenses.size(), "GeometricLens::solve_with_heights",
+          "one height per lens needed, got " + std::to_string(heights.size()) + " for " +
+              std::to_string(lenses.size()) + " lenses");
   const LensPipeline& pipeline = *impl_->pipeline;
   const FittedLenses fit = pipeline.unfitted(lenses);
   SolveCache cache;

@@ -12,6 +12,20 @@
 
 namespace geolens {
 
+namespace {
+
+// `control` with its progress numbered by the calibration's `solve`.
+SolveControl numbered(const SolveControl& control, int solve) {
+  SolveControl out{control.cancel, nullptr};
+  if (control.progress)
+    out.progress = [progress = control.progress, solve](const SolveProgress& p) {
+      progress({solve, p.iteration, p.energy});
+    };
+  return out;
+}
+
+}  // namespace
+
 std::unique_ptr<LensPipeline> LensPipeline::make(LensContext context) {
   if (context.options.model == LensModel::kFocus)
     return std::make_unique<FocusPipeline>(std::move(context));
@@ -68,17 +82,17 @@ void LensPipeline::prepare_flattener(const Lifted& lifted, const FocusConstraint
   r.timings.factorize = ms_since(t);
 }
 
-SolveControl LensPipeline::numbered(const SolveControl& control, int solve) {
-  SolveControl out{control.cancel, nullptr};
-  if (control.progress)
-    out.progress = [progress = control.progress, solve](const SolveProgress& p) {
-      progress({solve, p.iteration, p.energy});
-    };
-  return out;
-}
+void LensPipeline::flatten_and_finish(
+    const std::function<FlattenResult(const SolveControl&)>& flatten,
+    const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,
+    const SolveControl& control, int solve, Clock::time_point start, SolveCache& cache,
+    LensResult& r) const {
+  const auto t = Clock::now();
+  r.flattening = flatten(numbered(control, solve));
+  cache.predicted.resize(0, 2);
+  cache.flat = r.flattening.X;
+  r.timings.iterate = ms_since(t);
 
-void LensPipeline::finish(const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,
-                          LensResult& r) const {
   const double width = c_.width, height = c_.height;
   r.lifted = lifted.V;
   r.flat = r.flattening.X;
@@ -95,6 +109,7 @@ void LensPipeline::finish(const std::vector<Lens>& lenses, const Lifted& lifted,
     r.zoom_parameter.push_back(lens.zoom);
   }
   r.solves = 1;
+  r.timings.total = ms_since(start);
 }
 
 }  // namespace geolens

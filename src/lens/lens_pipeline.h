@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -96,13 +97,14 @@ class LensPipeline {
   void prepare_flattener(const Lifted& lifted, const FocusConstraints& constraints,
                          const FlattenOptions& options, LensResult& r, SolveCache& cache) const;
 
-  /// `control` with its progress numbered by the calibration's `solve`.
-  static SolveControl numbered(const SolveControl& control, int solve);
-
-  /// After the flattening: the framed WarpMesh (`boundary` as flattened) and the zoom measured at
-  /// each lens's peak.
-  void finish(const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,
-              LensResult& r) const;
+  /// The end of every solve: `flatten` (the model's iterations from the cache's flattener, given
+  /// `control` with its progress numbered by the calibration's `solve`), its result kept as the
+  /// next solve's start (a prediction is used once), timed; then the framed WarpMesh (`boundary`
+  /// as flattened), the zoom measured at each lens's peak and the total time since `start`.
+  void flatten_and_finish(const std::function<FlattenResult(const SolveControl&)>& flatten,
+                          const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,
+                          const SolveControl& control, int solve, Clock::time_point start,
+                          SolveCache& cache, LensResult& r) const;
 
   LensContext c_;
 };

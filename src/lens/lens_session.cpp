@@ -82,7 +82,7 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
   r.draft = draft && (draft_lens_ || (r.model == LensModel::kFocus &&
                                       solver.context().options.mesh_tolerance > 0));
   s.lenses = lenses;
-  s.heights = r.heights;
+  s.heights = r.model == LensModel::kFocus ? r.focus_log_zooms : r.lift_heights_px;
   s.model = r.model;
   s.change.resize(0, 2);
   if (before.rows() == cache.flat.rows()) {

@@ -87,12 +87,12 @@ LensResult LiftPipeline::solve_once(const Eigen::AlignedBox2d& box, const std::v
   const auto start = Clock::now();
   LensResult r;
   r.model = model_for(lenses);
-  r.heights = h;
+  r.lift_heights_px = h;
   r.mesh = mesh;
   r.box = box;
   const Lifted lifted = lift(r.mesh.V, lenses, h);
   r.timings.lift = ms_since(start);
-  auto t = Clock::now();
+  const auto t = Clock::now();
   texture(lifted, r);
   r.timings.texture = ms_since(t);
 
@@ -101,17 +101,11 @@ LensResult LiftPipeline::solve_once(const Eigen::AlignedBox2d& box, const std::v
 
   // A lens dragged steadily moves its flattening steadily: a prediction is the better start
   // (unless it folds a triangle; after a stop or a jump it costs at most an iteration).
-  t = Clock::now();
-  const SolveControl progress = numbered(control, solve);
-  const bool predicted = cache.predicted.rows() == cache.flat.rows();
-  r.flattening =
-      cache.flattener->solve(cache.flat, predicted ? &cache.predicted : nullptr, &progress);
-  cache.predicted.resize(0, 2);  // only the first solve has one
-  cache.flat = r.flattening.X;
-  r.timings.iterate = ms_since(t);
-
-  finish(lenses, lifted, options.boundary, r);
-  r.timings.total = ms_since(start);
+  const auto flatten = [&](const SolveControl& progress) {
+    const bool predicted = cache.predicted.rows() == cache.flat.rows();
+    return cache.flattener->solve(cache.flat, predicted ? &cache.predicted : nullptr, &progress);
+  };
+  flatten_and_finish(flatten, lenses, lifted, options.boundary, control, solve, start, cache, r);
   return r;
 }
 

@@ -38,7 +38,7 @@ INSTANTIATE_TEST_SUITE_P(ProfilesAndZooms, ZoomTest,
 TEST(GeometricLens, ZoomOneIsTheIdentity) {
   const GeometricLens lens(300, 200, test::auto_model());
   const LensResult r = lens.solve({circle(150, 100, 60, 1.0, Profile::kGaussian)});
-  EXPECT_EQ(r.heights[0], 0.0);
+  EXPECT_EQ(r.lift_heights_px.at(0), 0.0);
   EXPECT_LT((r.warp.source - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT((r.warp.screen - lens.grid().V).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_NEAR(r.zoom_measured[0], 1.0, 1e-9);
@@ -84,6 +84,11 @@ TEST(GeometricLens, RejectsInvalidLenses) {
   EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
   options.mesh = 1001;
   EXPECT_THROW(GeometricLens(100, 100, options), InvalidInput);
+  // One parameter per lens: a LensResult's heights of another set of lenses are refused.
+  const std::vector<Lens> two = {circle(30, 50, 10, 2, Profile::kGaussian),
+                                 circle(70, 50, 10, 2, Profile::kGaussian)};
+  EXPECT_THROW(lens.solve_with_heights(two, {20.0}), InvalidInput);
+  EXPECT_NO_THROW(lens.solve_with_heights(two, {20.0, 20.0}));
 }
 
 }  // namespace
@@ -168,7 +173,8 @@ TEST(GeometricLens, SolvesBitIdenticallyOnOneAndOnTwoThreads) {
     EXPECT_EQ(a.warp.source, b.warp.source) << model;
     EXPECT_EQ(a.warp.screen, b.warp.screen) << model;
     EXPECT_EQ(a.flattening.energy, b.flattening.energy) << model;
-    EXPECT_EQ(a.heights, b.heights) << model;
+    EXPECT_EQ(a.lift_heights_px, b.lift_heights_px) << model;
+    EXPECT_EQ(a.focus_log_zooms, b.focus_log_zooms) << model;
     EXPECT_EQ(a.zoom_measured, b.zoom_measured) << model;
   }
   LensOptions negative;

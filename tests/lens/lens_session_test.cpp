@@ -52,7 +52,7 @@ TEST(LensSession, UpdateMatchesTheExactSolveWhileTheLensMoves) {
       EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
       EXPECT_TRUE(r.flattening.converged);
       if (step > 0) EXPECT_LE(r.solves, 2) << "the previous heights should be reused";
-      const LensResult reference = exact.solve_with_heights({lens}, r.heights);
+      const LensResult reference = exact.solve_with_heights({lens}, r.lift_heights_px);
       EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
     }
   }
@@ -98,7 +98,7 @@ TEST(LensSession, UpdateSurvivesAnErraticSequence) {
     for (size_t k = 0; k < lenses.size(); ++k)
       EXPECT_NEAR(r.zoom_measured[k] / lenses[k].zoom, 1.0, 0.1) << "lens " << k;
     EXPECT_EQ(summarize(measure_triangles(r.warp)).flipped, 0);
-    const LensResult reference = exact.solve_with_heights(lenses, r.heights);
+    const LensResult reference = exact.solve_with_heights(lenses, r.lift_heights_px);
     EXPECT_EQ(r.model, reference.model);
     EXPECT_NEAR(r.flattening.energy.back() / reference.flattening.energy.back(), 1.0, 0.01);
   }

@@ -18,8 +18,11 @@ struct InvalidInput : std::invalid_argument {
 /// named as the faces name it, words joined by '_' ("mesh_tolerance": the CLI's --mesh-tolerance,
 /// Python's mesh_tolerance=), and the problem apart, so that a face says it in its own terms.
 struct InvalidOption : InvalidInput {
+  /// The message is "<function>: <option> <problem>".
   InvalidOption(const char* function, const std::string& option, const std::string& problem);
-  std::string option, problem;
+  ///@{
+  std::string option, problem;  ///< the option as the faces name it, and what is wrong with it
+  ///@}
 };
 
 /// A numerical failure at run time (a factorization that is not positive definite, ...).
@@ -46,7 +49,7 @@ void require(bool condition, const char* function, const std::string& what);
 void require_option(bool condition, const char* function, const std::string& option,
                     const std::string& problem);
 /// A line of a user's file as a message quotes it: control characters and bytes outside ASCII
-/// written \xNN (so none reaches the terminal), cut after 60 characters with its length said
+/// written `\xNN` (so none reaches the terminal), cut after 60 characters with its length said
 /// ("...(52000000 characters)").
 std::string quoted_line(std::string_view line);
 /// `value` for a message: the shortest text that reads back to it (180.00000000000014, 1e-09,

@@ -23,7 +23,9 @@ struct FocusMeasure {
   /// Over the focus (the triangles whose source centroid lies in the region): the area-weighted
   /// mean magnification, max / min magnification (1 = uniform), and the shape distortion
   /// s1 / s2 - 1, area-weighted mean and max.
+  ///@{
   double zoom = 0, uniformity = 0, shape_mean = 0, shape_max = 0;
+  ///@}
   /// sqrt(A / pi), A the source area (pixels^2) of the triangles nearest this lens (by distance
   /// to its region) whose magnification departs from 1 by more than 5 % or whose shape
   /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
@@ -79,10 +81,14 @@ struct ComparedMethod {
   std::vector<FocusMeasure> foci;  ///< per lens, over the region given (measure_foci)
 };
 
+/// What compare_lenses returns: the geometric lens's solve and every method, the geometric lens
+/// and the classic lenses matched to it, measured by the same code.
 struct Comparison {
+  ///@{
   int width = 0, height = 0;  ///< the source's size, pixels
-  std::vector<Lens> lenses;   ///< as given
-  LensResult geometric;       ///< the geometric lens's solve
+  ///@}
+  std::vector<Lens> lenses;  ///< as given
+  LensResult geometric;      ///< the geometric lens's solve
   /// per lens: classic_target at the zoom the geometric lens measured (at least 1); the zones
   /// of every method are taken in these disks
   std::vector<CircleLens> targets;
@@ -119,10 +125,14 @@ struct SweepPoint {
   double footprint_radius = 0;  ///< pixels, FocusMeasure
 };
 
+/// What footprint_sweep returns: per footprint ratio, the radial bounds at the zoom the focus
+/// lens reached and what each method measured.
 struct Sweep {
   std::vector<double> ratios;     ///< the footprint ratios swept
   std::vector<double> bound;      ///< per ratio, radial_distortion_bound at the zoom reached
   std::vector<double> rim_bound;  ///< per ratio, rim_distortion_bound at the zoom reached
+  /// Per ratio in `ratios` order: "geometric" (the focus lens), then for a circle every classic
+  /// lens in kClassicLenses order.
   std::vector<SweepPoint> points;
 };
 

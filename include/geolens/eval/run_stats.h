@@ -15,13 +15,17 @@ namespace geolens {
 /// LensResult::timings): reading the input and the lenses, measuring the result, rendering,
 /// writing the outputs, and the whole run.
 struct RunTimings {
-  double load = 0, measure = 0, render = 0, save = 0, total = 0;
+  ///@{
+  double load = 0, measure = 0, render = 0, save = 0, total = 0;  ///< milliseconds, as above
+  ///@}
 };
 
 /// What a run read its source from (source/source_file.h's SourceFile, without the source).
 struct RunSource {
   std::string kind;  ///< "image", "tiles", "svg", ...; "" = not reported
-  int frame_width = 0, frame_height = 0;
+  ///@{
+  int frame_width = 0, frame_height = 0;  ///< SourceFile's frame, pixels; reported as `frame`
+  ///@}
   double scale = 1;  ///< texels of the source's finest level per frame pixel
   std::vector<std::pair<std::string, double>> counters;  ///< SourceFile::counters after the render
 };

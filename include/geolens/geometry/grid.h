@@ -32,7 +32,9 @@ struct Grid : PlanarMesh {
 Grid make_grid(double width, double height, int vertices_long_side);
 
 /// The range every lens accepts for its grid's vertices along the long side.
+///@{
 constexpr int kMinMeshVertices = 4, kMaxMeshVertices = 1000;
+///@}
 /// Throws InvalidOption (core/errors.h), naming `function` and `option`, unless
 /// `vertices_long_side` is in [kMinMeshVertices, kMaxMeshVertices].
 void require_mesh_vertices(int vertices_long_side, const char* function,

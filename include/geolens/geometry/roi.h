@@ -28,12 +28,15 @@ class RegionShape {
   virtual ~RegionShape() = default;
   /// A short name: "circle", "polygon", "mask", ... (reports print it).
   virtual std::string kind() const = 0;
-  virtual Eigen::AlignedBox2d bounds() const = 0;
-  virtual Eigen::Vector2d peak() const = 0;
-  virtual double size() const = 0;
-  virtual double reach() const = 0;
+  virtual Eigen::AlignedBox2d bounds() const = 0;  ///< Region::bounds: bounding box, pixels
+  virtual Eigen::Vector2d peak() const = 0;        ///< Region::peak: deepest and thickest point
+  virtual double size() const = 0;                 ///< Region::size: the largest thickness, pixels
+  virtual double reach() const = 0;  ///< Region::reach: farthest point from peak(), pixels
+  /// Region::depth at `p` (pixels): in [0, 1], 0 on and outside the boundary, 1 on the medial axis.
   virtual double depth(const Eigen::Vector2d& p) const = 0;
+  /// Region::thickness at `p`: the local half-width, pixels.
   virtual double thickness(const Eigen::Vector2d& p) const = 0;
+  /// Region::distance from `p` to the region, pixels: 0 inside.
   virtual double distance(const Eigen::Vector2d& p) const = 0;
   /// The points that define the region and must lie in the image for a lens on it: a circle's
   /// centre, a polygon's vertices; none for a mask blob (it comes from an image of that size).
@@ -64,6 +67,8 @@ class Region {
   /// A simple polygon (vertices in pixels, either orientation, not closed explicitly). Throws
   /// InvalidInput for fewer than 3 vertices, zero area, self-intersections or non-finite values.
   static Region polygon(const std::vector<Eigen::Vector2d>& vertices);
+  /// The fewest pixels a blob of a mask needs to be a region (from_mask); smaller ones are speckle.
+  static constexpr int kMinMaskBlobPixels = 4;
   /// Every 8-connected blob of non-zero pixels of `mask` (first channel), one region each, in
   /// raster order of their first pixel. A blob whose smoothed outline (mask_contours,
   /// geometry/mask_contour.h: within about half a pixel of its pixel squares, corners rounded) is
@@ -74,7 +79,6 @@ class Region {
   /// kMinMaskBlobPixels pixels (speckle: a noisy mask of 961 one-pixel blobs made 961 lenses) are
   /// left out and counted in `*dropped` if given. Throws InvalidInput for an empty mask or one
   /// whose every blob is that small.
-  static constexpr int kMinMaskBlobPixels = 4;
   static std::vector<Region> from_mask(const Image& mask, size_t* dropped = nullptr);
   /// Any other kind of region; throws InvalidInput for a null shape.
   explicit Region(std::shared_ptr<const RegionShape> shape);
@@ -91,7 +95,9 @@ class Region {
   Eigen::Vector2d peak() const;
   /// The largest thickness, pixels: the radius of a circle.
   double size() const;
+  /// The depth at `p` (pixels): in [0, 1], 0 on and outside the boundary, 1 on the medial axis.
   double depth(const Eigen::Vector2d& p) const;
+  /// The thickness at `p`: the local half-width of the region, pixels (the circle's radius).
   double thickness(const Eigen::Vector2d& p) const;
   /// Distance from p to the region, pixels: 0 inside, the Euclidean distance to the nearest
   /// point of the region outside (exact for circles, polygons and a mask blob's outline; to the

@@ -8,6 +8,8 @@
 
 namespace geolens {
 
+/// Where subdivide refines a mesh (the triangles the lift stretches or shears) and in how many
+/// rounds (LensOptions::subdivision).
 struct SubdivisionOptions {
   /// An edge is split when its lifted 3D length exceeds this multiple of its planar length.
   double max_stretch = 1.6;

@@ -18,9 +18,13 @@ std::string temporary_path(const std::string& path);
 /// is a link to nothing; `in_place` when the target exists and is not a regular file or a
 /// folder (a device, a FIFO): written into, never replaced by a renamed temporary.
 struct OutputTarget {
-  std::string target;
-  bool dangling = false, in_place = false;
+  std::string target;  ///< the file written: `path`, or what the link at `path` names
+  ///@{
+  bool dangling = false, in_place = false;  ///< as above: a link to nothing; written into
+  ///@}
 };
+/// The OutputTarget of `path`, found without writing anything; never throws (a path that does not
+/// exist yet is its own target, neither dangling nor in place).
 OutputTarget output_target(const std::string& path);
 
 /// Writes `size` bytes at `data` to `path` opened for writing (made, or emptied: a temporary, a

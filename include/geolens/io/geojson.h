@@ -20,7 +20,7 @@ namespace geolens {
 /// Throws InvalidInput("parse_geojson: '<name>': <where>: <what>") for text that is not JSON
 /// (with its line and column) or is nested deeper than kMaxJsonDepth, an unknown or missing "type",
 /// a member of the wrong kind, a position that is not two finite numbers, or a geometry_problem
-/// (vector_data.h); <where> names the feature by its index and the coordinate by its indices
+/// (vector_data.h); `<where>` names the feature by its index and the coordinate by its indices
 /// ("feature 3: LineString coordinates[2]"); and for text longer than kMaxGeoJsonBytes.
 VectorData parse_geojson(const std::string& text, const std::string& name);
 
@@ -29,6 +29,7 @@ VectorData parse_geojson(const std::string& text, const std::string& name);
 /// parse_map_style) refuse text nested deeper than kMaxJsonDepth before parsing it: their
 /// readers recurse (a GeoJSON of 100 000 nested GeometryCollections overflowed the stack).
 size_t json_depth(const std::string& text);
+/// The deepest nesting of arrays and objects the JSON readers accept (json_depth).
 inline constexpr size_t kMaxJsonDepth = 256;
 
 /// The largest GeoJSON text read, bytes: 64 MiB (a file of 63 MB of lines took 0.6 GB and 3.7 s

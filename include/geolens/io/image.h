@@ -9,18 +9,22 @@ namespace geolens {
 
 /// An 8-bit image, row-major, channels interleaved, top row first.
 struct Image {
-  int width = 0;
-  int height = 0;
+  int width = 0;                ///< pixels
+  int height = 0;               ///< pixels
   int channels = 0;             ///< 1 (grey), 2 (grey+alpha), 3 (RGB) or 4 (RGBA)
   std::vector<uint8_t> pixels;  ///< width * height * channels bytes
 
   Image() = default;
   /// A width x height image with `channels` channels, every byte set to `fill`.
   Image(int width, int height, int channels, uint8_t fill = 0);
+  /// The first of the `channels` bytes of pixel (x, y) (x from the left, y from the top); not
+  /// bounds-checked: x in [0, width), y in [0, height).
+  ///@{
   uint8_t* at(int x, int y) { return pixels.data() + (size_t(y) * width + x) * channels; }
   const uint8_t* at(int x, int y) const {
     return pixels.data() + (size_t(y) * width + x) * channels;
   }
+  ///@}
 };
 
 /// Reads a PNG (libspng: any colour type and depth; palette to RGB(A), transparency to alpha) or

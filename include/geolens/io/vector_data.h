@@ -27,7 +27,7 @@ std::string to_string(GeometryType type);
 /// A GeoJSON geometry whose coordinates are pixels (x right, y down, origin top-left: source
 /// pixels before a forward map, screen pixels after it), not longitude and latitude.
 struct Geometry {
-  GeometryType type = GeometryType::kPoint;
+  GeometryType type = GeometryType::kPoint;  ///< which of the shapes below `paths` holds
   /// The coordinates, each path #P x 2 pixels:
   /// - Point: one path of one row;
   /// - MultiPoint: one path, one row per point (none for an empty MultiPoint);
@@ -67,8 +67,8 @@ enum class GeoJsonRoot {
 
 /// A GeoJSON document as features.
 struct VectorData {
-  GeoJsonRoot root = GeoJsonRoot::kFeatureCollection;
-  std::vector<Feature> features;
+  GeoJsonRoot root = GeoJsonRoot::kFeatureCollection;  ///< the object it was read from
+  std::vector<Feature> features;  ///< in document order; one for a kFeature or kGeometry root
 };
 
 /// What is wrong with `data` ("" if nothing): the first feature whose geometry has a

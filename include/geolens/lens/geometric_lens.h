@@ -18,7 +18,11 @@ namespace geolens {
 
 /// Wall-clock milliseconds per stage, summed over the calibration solves.
 struct StageTimings {
-  double lift = 0, texture = 0, factorize = 0, iterate = 0, total = 0;
+  double lift = 0;       ///< the lift and its subdivision (kFocus: the focus field)
+  double texture = 0;    ///< the harmonic texture map (kFocus: none, the mesh itself)
+  double factorize = 0;  ///< the flattener's systems built and factorized
+  double iterate = 0;    ///< the local/global iterations
+  double total = 0;      ///< the whole solve, the stages above and what lies between
 };
 
 /// The geometric lens's answer: the Magnification every lens method returns (the warp's source
@@ -30,8 +34,12 @@ struct LensResult : Magnification {
   Eigen::MatrixX3d lifted;             ///< #V x 3 the lifted mesh of the final solve, pixels
   Eigen::MatrixX2d flat;               ///< #V x 2 the flattening before framing, pixels
   FlattenResult flattening;            ///< iterations and energies of the final solve
-  /// per lens: calibrated centre height h0, pixels; for kFocus the log zoom of its focus
-  std::vector<double> heights;
+  /// per lens (kLift, kField): the calibrated height h0 of its bump's peak, pixels; empty for
+  /// kFocus
+  std::vector<double> lift_heights_px;
+  /// per lens (kFocus): the natural log of the zoom its focus was solved at (ln zoom_fits); empty
+  /// for the other models
+  std::vector<double> focus_log_zooms;
   /// per lens (kFocus): the zoom it was solved at, the one asked if that fits where the lens is,
   /// else the largest that does (fitting_zooms in focus_lens.h, and what its mesh holds without
   /// a fold). Empty for other models.
@@ -44,8 +52,8 @@ struct LensResult : Magnification {
   bool mesh_limited = false;
   /// The cotan texture map folded and was redone with non-negative weights (cotan+).
   bool texture_fallback = false;
-  int solves = 0;  ///< full solves made by the calibration
-  StageTimings timings;
+  int solves = 0;        ///< full solves made by the calibration
+  StageTimings timings;  ///< where the time went, milliseconds
 };
 
 /// One line per lens of `lenses` that `result` did not give the zoom asked: "lens K gets zoom Z
@@ -68,6 +76,8 @@ std::vector<std::string> zoom_warnings(const std::vector<Lens>& lenses, const Le
 /// it: one has the workers, the others run their loops on their own threads (ThreadPool::run).
 class GeometricLens {
  public:
+  /// A lens on a width x height image (pixels, > 0) with `options` (checked: InvalidInput, or
+  /// InvalidOption naming the option); starts its thread pool.
   GeometricLens(double width, double height, const LensOptions& options = {});
 
   /// kFocus: magnifies each lens's region by its zoom, or by the largest zoom that fits where it
@@ -79,15 +89,17 @@ class GeometricLens {
   /// a system cannot be solved, Cancelled if `control` stops it.
   LensResult solve(const std::vector<Lens>& lenses, const SolveControl& control = {}) const;
 
-  /// One solve with given peak heights (pixels), no calibration; fills `zoom_measured`.
+  /// One solve with given per-lens parameters, no calibration, as a LensResult reports them:
+  /// peak heights in pixels (kLift, kField: lift_heights_px) or log zooms (kFocus:
+  /// focus_log_zooms); fills `zoom_measured`.
   LensResult solve_with_heights(const std::vector<Lens>& lenses,
                                 const std::vector<double>& heights) const;
 
   /// The grid of the whole image (global extent).
   const Grid& grid() const;
-  double width() const;
-  double height() const;
-  const LensOptions& options() const;
+  double width() const;                ///< the image's width, pixels
+  double height() const;               ///< the image's height, pixels
+  const LensOptions& options() const;  ///< what every solve uses
 
  private:
   friend class LensSession;  // calls the pipeline's steps with its caches

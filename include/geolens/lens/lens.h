@@ -27,20 +27,23 @@ double profile_value(Profile profile, double t);
 
 /// Parses "gaussian", "sphere" or "mesa"; throws InvalidInput otherwise.
 Profile parse_profile(const std::string& name);
+/// The name parse_profile reads: "gaussian", "sphere" or "mesa".
 std::string to_string(Profile profile);
 
 /// One lens: where, how much, and with which bump shape.
 struct Lens {
-  Region region;
+  Region region;      ///< what it magnifies, source pixels
   double zoom = 2.0;  ///< requested magnification at the region's peak, in [1, 8]
-  Profile profile = Profile::kGaussian;
+  Profile profile = Profile::kGaussian;  ///< the lift's bump shape (lift and field models)
   /// LensModel::kFocus: how far the context may give way, as the ratio of the footprint's reach
   /// to the region's from its peak (focus_lens.h); 0 for the default, 2 zoom. Else > zoom, <= 100.
   double footprint = 0;
 };
 
 /// The zooms a lens may ask for.
+///@{
 constexpr double kMinZoom = 1, kMaxZoom = 8;
+///@}
 /// Throws InvalidInput, naming `function`, unless `zoom` is in [kMinZoom, kMaxZoom].
 void require_zoom(double zoom, const char* function);
 

@@ -32,11 +32,12 @@ class LensMethod {
 /// was solved at (its request, or the largest that fits, LensResult::zoom_fits).
 class GeometricMethod final : public LensMethod {
  public:
+  /// Throws InvalidInput (InvalidOption) for options out of range (validate(LensOptions)).
   explicit GeometricMethod(const LensOptions& options = {});
   std::string name() const override { return "geometric"; }
   Magnification magnify(const std::vector<Lens>& lenses, double width,
                         double height) const override;
-  const LensOptions& options() const { return options_; }
+  const LensOptions& options() const { return options_; }  ///< what every solve uses
 
  private:
   LensOptions options_;
@@ -59,6 +60,7 @@ struct ClassicOptions {
 /// (match_classic_lens). Throws InvalidInput for a region that is not a circle.
 class ClassicMethod final : public LensMethod {
  public:
+  /// Throws InvalidOption unless options.mesh is in [kMinMeshVertices, kMaxMeshVertices].
   explicit ClassicMethod(ClassicLens kind, ClassicOptions options = {});
   std::string name() const override { return to_string(kind_); }
   Magnification magnify(const std::vector<Lens>& lenses, double width,

@@ -50,17 +50,19 @@ enum class Boundary {
 FlattenWeights parse_flatten_weights(const std::string& name);  ///< "paper" | "cotan"
 Metric parse_metric(const std::string& name);                   ///< "paper" | "spectrum"
 Boundary parse_boundary(const std::string& name);               ///< "sliding" | "fixed" | "free"
-std::string to_string(FlattenWeights weights);
-std::string to_string(Metric metric);
-std::string to_string(Boundary boundary);
+std::string to_string(FlattenWeights weights);  ///< the name parse_flatten_weights reads
+std::string to_string(Metric metric);           ///< the name parse_metric reads
+std::string to_string(Boundary boundary);       ///< the name parse_boundary reads
 
+/// How the local/global flattener (paper 5) solves: its weights, metric, boundary and stopping
+/// rule.
 struct FlattenOptions {
-  FlattenWeights weights = FlattenWeights::kPaper;
-  Metric metric = Metric::kPaper;
+  FlattenWeights weights = FlattenWeights::kPaper;  ///< per-edge weights of the global step
+  Metric metric = Metric::kPaper;  ///< the local step's target metric (with `alpha`)
   double alpha = 0.0;  ///< metric blend: [0, 1) for kPaper (the paper uses [0, 0.5]), [0, 1]
                        ///< for kSpectrum
-  Boundary boundary = Boundary::kSliding;
-  Standard standard = Standard::kLifted;
+  Boundary boundary = Boundary::kSliding;  ///< what the image's border vertices may do
+  Standard standard = Standard::kLifted;   ///< the shapes the local step keeps
   double tolerance = 1e-3;   ///< stop when |E_k - E_k-1| <= tolerance * E_k-1 (paper: 0.1%)
   int max_iterations = 100;  ///< cap on global steps, >= 1
   /// Bound each step so no triangle changes orientation: the global step's result X' is taken
@@ -87,7 +89,7 @@ enum class TextureWeights {
 };
 
 TextureWeights parse_texture_weights(const std::string& name);  ///< "mvc" | "cotan" | "cotan+"
-std::string to_string(TextureWeights weights);
+std::string to_string(TextureWeights weights);  ///< the name parse_texture_weights reads
 
 /// Which part of the image takes part in the solve.
 enum class Extent {
@@ -98,7 +100,7 @@ enum class Extent {
   kLocal,
 };
 Extent parse_extent(const std::string& name);  ///< "global" | "local"
-std::string to_string(Extent extent);
+std::string to_string(Extent extent);          ///< the name parse_extent reads
 
 /// What a lens magnifies and how (docs/design.md, "Focus lenses" and "Lens models").
 enum class LensModel {
@@ -120,10 +122,13 @@ enum class LensModel {
   kAuto,  ///< kLift when every lens is a circle, else kField
 };
 LensModel parse_lens_model(const std::string& name);  ///< "focus" | "lift" | "field" | "auto"
-std::string to_string(LensModel model);
+std::string to_string(LensModel model);               ///< the name parse_lens_model reads
 /// The model that solves `lenses` with `model` asked: kAuto resolved, any other as it is.
 LensModel resolved_model(LensModel model, const std::vector<Lens>& lenses);
 
+/// Everything a GeometricLens (and a LensSession) is built with: the model, its mesh and extent,
+/// and the options of the paper's steps. Checked by validate(); the defaults are what every face
+/// starts from.
 struct LensOptions {
   int mesh = 100;  ///< grid vertices along the solved area's long side, in [4, 1000]
   /// kFocus: the grid is refined where the lens's start (focus_start) strays from linear over a
@@ -133,21 +138,22 @@ struct LensOptions {
   /// LensSession's drafts (a drag's frames) on a grid of this many vertices along the long side
   /// instead of `mesh` (0: `mesh`; else in [4, 1000]).
   int draft_mesh = 0;
-  Extent extent = Extent::kGlobal;  ///< kLift and kField only (kFocus solves its footprints)
-  double extent_factor = 2.5;       ///< local patch half-side over the lens size (radius), > 1
-  LensModel model = LensModel::kFocus;
-  TextureWeights texture = TextureWeights::kCotan;
-  SubdivisionOptions subdivision;
-  FlattenOptions flatten;
+  Extent extent = Extent::kGlobal;      ///< kLift and kField only (kFocus solves its footprints)
+  double extent_factor = 2.5;           ///< local patch half-side over the lens size (radius), > 1
+  LensModel model = LensModel::kFocus;  ///< how the lenses are solved
+  TextureWeights texture = TextureWeights::kCotan;  ///< kLift and kField: the texture map's weights
+  SubdivisionOptions subdivision;  ///< kLift and kField: where the lifted mesh is refined
+  FlattenOptions flatten;          ///< the flattener's options, every model
   /// kLift and kField: bump heights are calibrated until every lens's measured zoom is within
   /// this relative tolerance of its request, or `max_calibration_solves` full solves were made.
   double zoom_tolerance = 0.02;
-  int max_calibration_solves = 12;
+  int max_calibration_solves = 12;  ///< kLift and kField: full solves at most, >= 1
 };
 
 /// Throws InvalidInput unless the options are in range.
 void validate(const LensOptions& options);
 
+/// What one flattening (the final solve of a GeometricLens) reports.
 struct FlattenResult {
   Eigen::MatrixX2d X;          ///< #V x 2 flattened positions, pixels (before framing)
   std::vector<double> energy;  ///< energy of the initial guess, then after each global step

@@ -22,10 +22,11 @@ namespace geolens {
 /// next on a worker thread (see LensWorker). One session is used by one thread at a time.
 class LensSession {
  public:
+  /// A session on a width x height image (pixels) with `options`, as GeometricLens checks them.
   LensSession(double width, double height, const LensOptions& options = {});
   ~LensSession();
-  LensSession(LensSession&&) noexcept;
-  LensSession& operator=(LensSession&&) noexcept;
+  LensSession(LensSession&&) noexcept;             ///< moves the lens and what it remembers
+  LensSession& operator=(LensSession&&) noexcept;  ///< moves the lens and what it remembers
 
   /// The lenses of this frame, solved as GeometricLens::solve() would (zoom calibrated and
   /// checked the same way). Throws InvalidInput for an invalid lens (the session is unchanged),
@@ -43,7 +44,7 @@ class LensSession {
   /// Forgets every frame: the next update() starts as a first placement.
   void reset();
 
-  const GeometricLens& lens() const { return lens_; }
+  const GeometricLens& lens() const { return lens_; }  ///< the lens it solves with
 
  private:
   struct State;

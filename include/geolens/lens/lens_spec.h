@@ -30,7 +30,9 @@ std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, 
 
 /// A file a spec reads: `kind` "polygon" or "mask", `path` its FILE.
 struct LensSpecFile {
-  std::string kind, path;
+  ///@{
+  std::string kind, path;  ///< "polygon" or "mask"; the FILE as the spec writes it
+  ///@}
 };
 /// The file `spec` reads, from the text alone (none for a circle or a malformed spec, which
 /// parse_lens_spec rejects): so a tool can check its outputs against it before any work.

@@ -31,7 +31,7 @@ struct LensFrame {
   /// The latest request that failed (InvalidInput, SolverError) after `request`, and why; 0 and
   /// empty if none did.
   std::uint64_t failed_request = 0;
-  std::string error;
+  std::string error;  ///< the failed request's message, as the exception's what() said it
 };
 
 /// Runs a LensSession (or any lens method) on a worker thread. The UI thread submits the lenses

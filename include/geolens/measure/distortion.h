@@ -39,16 +39,20 @@ double magnification_at(const WarpMesh& mesh, const Eigen::Vector2d& point, doub
 /// @param mesh         grid vertices along that side (LensOptions::mesh), >= 2
 double zoom_measure_radius(double region_size, double solved_side, int mesh);
 
+/// A whole warp's shape distortion and flips, as run_stats_json reports them: summarize of
+/// measure_triangles. Triangles degenerate in the source (s1 / s2 - 1 infinite) count as flipped
+/// and are left out of the figures.
 struct DistortionSummary {
   double conformal_mean = 0;  ///< source-area-weighted mean of s1 / s2 - 1
-  double conformal_max = 0;
-  int flipped = 0;
+  double conformal_max = 0;   ///< the largest s1 / s2 - 1
+  int flipped = 0;            ///< triangles with det J <= 0, degenerate ones included
   /// Some triangle collapsed (conformal_max above kDegenerateConformal): the figures then say
   /// how badly, not what a picture shows (the field model on a paragraph measured 8.3e14).
   bool degenerate() const { return !(conformal_max <= kDegenerateConformal); }
-  static constexpr double kDegenerateConformal = 1e6;
+  static constexpr double kDegenerateConformal = 1e6;  ///< above it, degenerate()
 };
 
+/// The DistortionSummary of `measures` (measure_triangles of a warp).
 DistortionSummary summarize(const TriangleDistortion& measures);
 
 // Distortion per lens region (focus, transition, context) on any WarpMesh, the area the warp
@@ -81,13 +85,15 @@ void validate(const CircleLens& lens, const char* function);
 /// Source radius of the focus: focus_fraction * radius / zoom, pixels.
 double focus_radius(const CircleLens& lens);
 
+/// Where a triangle lies for a lens (classify_triangles): its focus, the transition ring around
+/// it, or the context beyond the lens.
 enum class Zone { kFocus, kTransition, kContext };
 std::string to_string(Zone zone);  ///< "focus" | "transition" | "context"
 
 /// Where a triangle is: its zone and the lens that decides it.
 struct TriangleZone {
-  Zone zone = Zone::kContext;
-  int lens = 0;  ///< index into the lenses
+  Zone zone = Zone::kContext;  ///< focus, transition or context of lens `lens`
+  int lens = 0;                ///< index into the lenses
 };
 
 /// The zone of every triangle of `mesh`, the same rule for every lens method. A triangle's
@@ -108,15 +114,19 @@ struct ZoneStatistics {
   int flipped = 0;                  ///< triangles with det J <= 0 or degenerate
   double area = 0;                  ///< source area of the measured triangles, pixels^2
   double conformal_mean = 0;        ///< shape distortion s1 / s2 - 1
-  double conformal_max = 0;         ///<
-  double magnification_min = 0;     ///< sqrt(s1 s2)
-  double magnification_max = 0;     ///<
+  double conformal_max = 0;         ///< the largest s1 / s2 - 1
+  double magnification_min = 0;     ///< the smallest sqrt(s1 s2), the linear magnification
+  double magnification_max = 0;     ///< the largest sqrt(s1 s2)
   double area_distortion_mean = 0;  ///< max(a, 1 / a) - 1 with a = s1 s2 the area scale: 0 when
                                     ///< the triangle keeps its area
 };
 
+/// What measure_regions returns: ZoneStatistics per zone and over the whole warp, how uniform
+/// the foci are, and the source area the warp hides.
 struct RegionStatistics {
-  ZoneStatistics focus, transition, context, overall;
+  ///@{
+  ZoneStatistics focus, transition, context, overall;  ///< per zone (classify_triangles); all
+  ///@}
   /// Max / min magnification over the measured focus triangles of one lens, the largest over the
   /// lenses (1 = a uniform focus); 0 when no lens has a measured focus triangle.
   double focus_uniformity = 0;

@@ -11,6 +11,7 @@
 
 namespace geolens {
 
+/// How draw_overlay draws: colours (RGB), stroke and dot sizes in the image's pixels, labels.
 struct OverlayStyle {
   std::array<uint8_t, 3> line_colour = {20, 90, 220};   ///< lines and polygon rings
   std::array<uint8_t, 3> point_colour = {225, 35, 35};  ///< dots

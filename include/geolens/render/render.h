@@ -14,6 +14,8 @@ namespace geolens {
 
 class ThreadPool;  // core/thread_pool.h
 
+/// What render() draws: the output's size and background, how it samples the source's levels,
+/// and on which threads.
 struct RenderOptions {
   int width = 0;                                             ///< output width, pixels (> 0)
   int height = 0;                                            ///< output height, pixels (> 0)

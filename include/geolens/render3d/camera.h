@@ -33,10 +33,12 @@ void parse_view(const std::string& view, OrbitCamera& camera);
 /// sphere projects to the frame's centre. Camera coordinates: x right, y up, z towards the
 /// viewer (the camera looks along -z).
 struct Projection {
-  Eigen::Matrix3d rotation;           ///< rows: the camera's x, y, z axes in model coordinates
-  Eigen::Vector3d eye;                ///< the camera's position, model units
-  double focal = 1;                   ///< frame pixels per unit of x / depth
+  Eigen::Matrix3d rotation;  ///< rows: the camera's x, y, z axes in model coordinates
+  Eigen::Vector3d eye;       ///< the camera's position, model units
+  double focal = 1;          ///< frame pixels per unit of x / depth
+  ///@{
   double centre_x = 0, centre_y = 0;  ///< frame pixel coordinates of the optical axis
+  ///@}
 
   /// A model point in camera coordinates.
   Eigen::Vector3d to_camera(const Eigen::Vector3d& p) const { return rotation * (p - eye); }
@@ -66,8 +68,10 @@ Projection place_camera(const OrbitCamera& camera, const Eigen::Vector3d& centre
 /// regions of one grid agree exactly where they overlap and adjacent ones join without a seam.
 struct PixelRegion {
   double pixel_size = 1;  ///< frame pixels per pixel, > 0
-  int x = 0, y = 0;       ///< grid index of the region's first pixel
-  int width = 0, height = 0;
+  ///@{
+  int x = 0, y = 0;           ///< grid index of the region's first pixel
+  int width = 0, height = 0;  ///< pixels of the grid, >= 1
+  ///@}
 };
 
 /// Throws InvalidInput naming `function` unless the region has a finite positive pixel size

@@ -15,9 +15,12 @@ namespace geolens {
 
 /// A colour, each component in [0, 1], straight (not premultiplied) alpha.
 struct MapColor {
-  double r = 0, g = 0, b = 0, a = 1;
+  ///@{
+  double r = 0, g = 0, b = 0, a = 1;  ///< red, green, blue, alpha
+  ///@}
 };
 
+/// How a vector map lays longitude and latitude (degrees) on its plane (a style's "projection").
 enum class MapProjection {
   kWebMercator,  ///< "web_mercator": x = lon, y = ln tan(pi/4 + lat/2), lat clamped to +-85.0511
   kPlateCarree,  ///< "plate_carree": x = lon, y = lat (equirectangular)
@@ -31,10 +34,10 @@ struct MapLabelStyle {
   /// A label of rank r shows where the local scale (screen pixels per frame pixel) is at least
   /// 2^(r - base): at zoom 1 ranks <= base, each doubling of the zoom one rank more.
   double base = 3;
-  double size = 12;  ///< font size, screen pixels
-  MapColor color = {0.1, 0.1, 0.1, 1};
-  MapColor halo = {1, 1, 1, 0.9};
-  double halo_width = 2;  ///< screen pixels, >= 0
+  double size = 12;                     ///< font size, screen pixels
+  MapColor color = {0.1, 0.1, 0.1, 1};  ///< the text's
+  MapColor halo = {1, 1, 1, 0.9};       ///< the outline around the text, halo_width wide
+  double halo_width = 2;                ///< screen pixels, >= 0
 };
 
 /// One layer: the features it selects and how it draws them, in the order of the layers (a later
@@ -44,12 +47,12 @@ struct MapLayerStyle {
   /// Selects the features whose property `key` equals one of `values` (JSON equality: 2 and 2.0
   /// match, "2" and 2 do not), for every entry; empty: every feature.
   struct Condition {
-    std::string key;
+    std::string key;                  ///< a property name
     std::vector<std::string> values;  ///< each a JSON value as text
   };
-  std::vector<Condition> where;
+  std::vector<Condition> where;  ///< all must hold; empty: every feature
   /// Which geometries of the selected features it draws (and, for points, labels).
-  enum class Geometry { kAny, kPoint, kLine, kPolygon } geometry = Geometry::kAny;
+  enum class Geometry { kAny, kPoint, kLine, kPolygon } geometry = Geometry::kAny;  ///< kAny: all
   std::optional<MapColor> fill;    ///< polygons, and point dots; none: not filled
   std::optional<MapColor> stroke;  ///< lines and polygon outlines; none: not stroked
   /// Stroke width and point radius in pixels of the level drawn, which is shown at about one
@@ -62,18 +65,21 @@ struct MapLayerStyle {
   /// The layer is drawn on the levels whose zoom is in [min_zoom, max_zoom): level l of a map of
   /// scale s is the one shown where the frame is magnified s / 2^l times (level 0 of a scale-8
   /// map: zoom 8); the renderer blends neighbouring levels, so a layer fades in over a zoom band.
+  ///@{
   double min_zoom = 0, max_zoom = std::numeric_limits<double>::infinity();
+  ///@}
   /// Labels of its points (of Point and MultiPoint geometries), shown where the local scale is
   /// in [min_zoom, max_zoom) and allows their rank (map_labels.h).
   std::optional<MapLabelStyle> label;
 };
 
+/// A vector map's style: what parse_map_style reads, or default_map_style.
 struct MapStyle {
-  MapColor background = {0.67, 0.8, 0.9, 1};  ///< opaque: the alpha is ignored
-  MapProjection projection = MapProjection::kWebMercator;
+  MapColor background = {0.67, 0.8, 0.9, 1};               ///< opaque: the alpha is ignored
+  MapProjection projection = MapProjection::kWebMercator;  ///< how the frame shows the globe
   /// [west, south, east, north], degrees: what the frame shows; empty: the data's bounding box.
   std::optional<std::array<double, 4>> extent;
-  std::vector<MapLayerStyle> layers;
+  std::vector<MapLayerStyle> layers;  ///< drawn in order, each over the ones before
 };
 
 /// The style used without a style file: water-blue background; three layers over every feature:
@@ -131,9 +137,11 @@ Eigen::Vector2d checked_degrees(double lon, double lat, const char* function,
 /// A vector map's frame: projected (x, y north) -> frame pixels (x right, y down) is
 /// offset + scale (x - left, top - y).
 struct MapFrame {
-  MapProjection projection = MapProjection::kWebMercator;
+  MapProjection projection = MapProjection::kWebMercator;  ///< the map style's
+  ///@{
   double left = 0, top = 0;  ///< the projected extent's west and north edges
-  double scale = 1;          ///< frame pixels per projected unit, > 0
+  ///@}
+  double scale = 1;                                  ///< frame pixels per projected unit, > 0
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();  ///< frame pixels of (left, top)
 
   /// A projected point in frame pixels.
@@ -148,9 +156,13 @@ struct MapFrame {
 /// Every coordinate of `data` (degrees, checked_degrees; `name` the input, for messages) in
 /// `frame`'s pixels, or back (to_degrees).
 VectorData to_frame_pixels(const VectorData& data, const MapFrame& frame, const std::string& name);
+/// Every coordinate of `data`, in `frame`'s pixels, in degrees (MapFrame::degrees: off the map,
+/// beyond the globe's range; not checked).
 VectorData to_degrees(const VectorData& data, const MapFrame& frame);
 /// The same for points (x = lon, y = lat), their rows' rest kept.
 PointTable to_frame_pixels(const PointTable& table, const MapFrame& frame, const std::string& name);
+/// The points of `table`, in `frame`'s pixels, in degrees (x = lon, y = lat) as to_degrees above,
+/// their rows' rest kept.
 PointTable to_degrees(const PointTable& table, const MapFrame& frame);
 
 }  // namespace geolens

@@ -18,11 +18,15 @@ namespace geolens {
 /// i * channels. A view into the source's own storage (valid while the source lives, `owner`
 /// empty) or a copy that `owner` keeps alive; either way it is safe to read from any thread.
 struct TexelRegion {
-  const uint8_t* data = nullptr;
-  size_t stride = 0;  ///< bytes from one row to the next
-  int x = 0, y = 0;   ///< level texel coordinates of data[0]
-  int width = 0, height = 0;
-  int channels = 0;
+  const uint8_t* data = nullptr;  ///< the values of texel (x, y), then the rest of its row
+  size_t stride = 0;              ///< bytes from one row to the next
+  ///@{
+  int x = 0, y = 0;  ///< level texel coordinates of data[0]
+  ///@}
+  ///@{
+  int width = 0, height = 0;  ///< texels, >= 1
+  ///@}
+  int channels = 0;                   ///< values per texel, the source's: 1 - 4
   std::shared_ptr<const void> owner;  ///< keeps `data` alive when the source does not
 
   /// The texel (x, y) of the level, which must lie in the region.
@@ -45,12 +49,12 @@ class Source {
  public:
   virtual ~Source() = default;
 
-  int width() const { return width_; }  ///< level 0, texels (source pixels)
-  int height() const { return height_; }
-  int channels() const { return channels_; }
-  int levels() const { return levels_; }  ///< >= 1; the last is 1 x 1
-  int level_width(int level) const { return ((width_ - 1) >> level) + 1; }  ///< level in range
-  int level_height(int level) const { return ((height_ - 1) >> level) + 1; }
+  int width() const { return width_; }        ///< level 0, texels (source pixels)
+  int height() const { return height_; }      ///< level 0, texels (source pixels)
+  int channels() const { return channels_; }  ///< 8-bit values per texel, 1 - 4
+  int levels() const { return levels_; }      ///< >= 1; the last is 1 x 1
+  int level_width(int level) const { return ((width_ - 1) >> level) + 1; }    ///< level in range
+  int level_height(int level) const { return ((height_ - 1) >> level) + 1; }  ///< level in range
 
   /// The texels [x, x + width) x [y, y + height) of `level` (texel indices). Texels outside
   /// the level repeat its nearest edge texel (clamp-to-edge), so any rectangle can be fetched;
@@ -62,8 +66,11 @@ class Source {
  protected:
   /// Throws InvalidInput (naming `function`) unless width, height >= 1 and channels in [1, 4].
   Source(int width, int height, int channels, const char* function);
+  /// Copied only as the derived class it is, never sliced through a Source.
+  ///@{
   Source(const Source&) = default;
   Source& operator=(const Source&) = default;
+  ///@}
 
   /// fetch() of a rectangle already checked to lie inside `level`.
   virtual TexelRegion fetch_inside(int level, int x, int y, int width, int height) const = 0;
@@ -83,6 +90,8 @@ class MipPyramid : public Source {
   /// Throws InvalidInput for an empty image, channels outside [1, 4] or a pixel buffer of the
   /// wrong size.
   explicit MipPyramid(const Image& source);
+  /// Level `i`, in [0, levels()) (not checked): level_width(i) x level_height(i) pixels, the
+  /// source image's channels.
   const Image& level(int i) const { return levels_[size_t(i)]; }
 
   /// Trilinear sample at source-pixel coordinates (x, y) of level 0 (pixel centres at +0.5),
@@ -101,11 +110,17 @@ class MipPyramid : public Source {
 
 /// Which tile a TileProvider is asked for, and the shape it must have.
 struct TileRequest {
-  int level = 0;               ///< level of detail, 0 = full resolution
+  int level = 0;  ///< level of detail, 0 = full resolution
+  ///@{
   int tile_x = 0, tile_y = 0;  ///< tile indices in the level
-  int x = 0, y = 0;            ///< level texel indices of its first texel: tile_x * tile_size, ...
-  int width = 0, height = 0;   ///< texels: tile_size, fewer in the level's last column / row
-  int channels = 0;            ///< the source's
+  ///@}
+  ///@{
+  int x = 0, y = 0;  ///< level texel indices of its first texel: tile_x * tile_size, ...
+  ///@}
+  ///@{
+  int width = 0, height = 0;  ///< texels: tile_size, fewer in the level's last column / row
+  ///@}
+  int channels = 0;  ///< the source's
 };
 
 /// Supplies the texels of one tile: an Image of exactly request.width x request.height texels
@@ -114,6 +129,8 @@ struct TileRequest {
 /// the tile stays cached; it may throw, and the exception reaches the caller of fetch (render).
 using TileProvider = std::function<Image(const TileRequest&)>;
 
+/// How a TiledSource cuts its levels into tiles, how many bytes of them it keeps, and where its
+/// coarser levels come from.
 struct TiledSourceOptions {
   int tile_size = 256;                     ///< texels per tile side; even, in [2, 16384]
   size_t cache_bytes = size_t(256) << 20;  ///< budget of the tile cache; >= one full tile's bytes
@@ -151,8 +168,9 @@ class TiledSource : public Source {
               const TiledSourceOptions& options = {});
   ~TiledSource() override;
 
-  int tile_size() const { return options_.tile_size; }
-  size_t cache_budget() const { return options_.cache_bytes; }
+  int tile_size() const { return options_.tile_size; }          ///< texels per tile side
+  size_t cache_budget() const { return options_.cache_bytes; }  ///< texel bytes cached at most
+  /// What the cache holds now and has made so far; safe to call while other threads fetch.
   TileCacheStats cache_stats() const;
 
  private:

@@ -24,7 +24,9 @@ struct SourceFileOptions {
   /// The frame, pixels (--size): for a source without pixels of its own (SVG, vector map, 3D
   /// scene) the whole extent drawn at this size is the frame at zoom 1; for a pyramid or a tile
   /// folder the level nearest this size is. 0 x 0: the kind's own default.
+  ///@{
   int width = 0, height = 0;
+  ///@}
   std::string style;     ///< vector map: a style file (--style); empty: the built-in style
   std::string view;      ///< 3D scene: the camera (--view), e.g. "AZ,EL" in degrees
   std::string transfer;  ///< volume: a transfer preset or table file (--transfer)
@@ -36,9 +38,11 @@ struct SourceFileOptions {
 /// render passes RenderOptions::source_scale = scale (the renderer then picks, per triangle, the
 /// level the magnification needs, and blends neighbouring levels).
 struct SourceFile {
-  std::shared_ptr<const Source> source;   ///< never null
-  int frame_width = 0, frame_height = 0;  ///< >= 1
-  double scale = 1;                       ///< > 0; 1 for a plain image
+  std::shared_ptr<const Source> source;  ///< never null
+  ///@{
+  int frame_width = 0, frame_height = 0;  ///< the frame, pixels, >= 1
+  ///@}
+  double scale = 1;  ///< > 0; 1 for a plain image
   /// RenderOptions::level_band to render it with: 1 (trilinear) where a level is the same picture
   /// at another resolution; narrower where each level is drawn on its own (a web map's tiles, a
   /// vector map), whose labels and line widths would otherwise show twice where levels blend.

@@ -13,8 +13,9 @@ enum class MapDirection {
   kInverse,  ///< screen pixels -> source pixels (WarpMap::inverse)
 };
 
+/// How map_features maps: which way, and how finely lines and rings are cut first.
 struct MapOptions {
-  MapDirection direction = MapDirection::kForward;
+  MapDirection direction = MapDirection::kForward;  ///< source -> screen, or back
   /// Lines and rings are densified (densify.h) to segments of at most this length before they
   /// are mapped, in pixels of the side they are mapped from (source for kForward, screen for
   /// kInverse), > 0; +infinity maps their vertices alone. The warp is linear on each triangle, so
@@ -29,17 +30,19 @@ struct MapLosses {
   int points = 0;    ///< points dropped (of Point and MultiPoint geometries, or CSV rows)
   int lines = 0;     ///< lines (of LineString and MultiLineString geometries) cut or dropped
   int polygons = 0;  ///< polygons (of Polygon and MultiPolygon geometries) dropped
-  bool any() const { return points > 0 || lines > 0 || polygons > 0; }
+  bool any() const { return points > 0 || lines > 0 || polygons > 0; }  ///< anything left out
 };
 
+/// What map_features returns.
 struct MappedFeatures {
-  VectorData data;
-  MapLosses losses;
+  VectorData data;   ///< the mapped features, in the pixels of the side mapped to
+  MapLosses losses;  ///< what was cut or dropped
 };
 
+/// What map_points returns.
 struct MappedPoints {
-  PointTable table;
-  MapLosses losses;
+  PointTable table;  ///< the rows kept, their points in the pixels of the side mapped to
+  MapLosses losses;  ///< the rows dropped, as `points`
 };
 
 /// Maps every geometry of `data` through `map`, ids and properties unchanged:
