@@ -1,6 +1,6 @@
 #include "options.h"
 
-#include <sstream>
+#include <algorithm>
 #include <string>
 
 #include "geolens/core/errors.h"
@@ -10,80 +10,44 @@ namespace geolens::python {
 
 namespace {
 
-// One keyword: how it sets the options and how its value reads (for the docstring).
-struct Option {
-  const char* name;
-  const char* type;  // for messages: "str", "int" or "float"
-  void (*set)(LensOptions&, const py::handle&);
-  std::string (*show)(const LensOptions&);
-};
-
-std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
+// A keyword's Python type, as its messages name it, and whether `value` has it (bool is not an
+// int here).
+const char* python_type(LensOptionField::Type type) {
+  switch (type) {
+    case LensOptionField::Type::kInteger:
+      return "int";
+    case LensOptionField::Type::kNumber:
+      return "float";
+    case LensOptionField::Type::kChoice:
+      break;
+  }
+  return "str";
 }
 
-std::string quoted(const std::string& name) { return "'" + name + "'"; }
+bool has_type(const py::handle& value, LensOptionField::Type type) {
+  const bool integer = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
+  switch (type) {
+    case LensOptionField::Type::kInteger:
+      return integer;
+    case LensOptionField::Type::kNumber:
+      return integer || py::isinstance<py::float_>(value);
+    case LensOptionField::Type::kChoice:
+      break;
+  }
+  return py::isinstance<py::str>(value);
+}
 
-const Option kOptions[] = {
-    {"model", "str",
-     [](LensOptions& o, const py::handle& v) { o.model = parse_lens_model(v.cast<std::string>()); },
-     [](const LensOptions& o) { return quoted(to_string(o.model)); }},
-    {"mesh", "int", [](LensOptions& o, const py::handle& v) { o.mesh = v.cast<int>(); },
-     [](const LensOptions& o) { return number(o.mesh); }},
-    {"mesh_tolerance", "float",
-     [](LensOptions& o, const py::handle& v) { o.mesh_tolerance = v.cast<double>(); },
-     [](const LensOptions& o) { return number(o.mesh_tolerance); }},
-    {"draft_mesh", "int", [](LensOptions& o, const py::handle& v) { o.draft_mesh = v.cast<int>(); },
-     [](const LensOptions& o) { return number(o.draft_mesh); }},
-    {"subdivide", "int",
-     [](LensOptions& o, const py::handle& v) { o.subdivision.max_levels = v.cast<int>(); },
-     [](const LensOptions& o) { return number(o.subdivision.max_levels); }},
-    {"metric", "str",
-     [](LensOptions& o, const py::handle& v) {
-       o.flatten.metric = parse_metric(v.cast<std::string>());
-     },
-     [](const LensOptions& o) { return quoted(to_string(o.flatten.metric)); }},
-    {"alpha", "float",
-     [](LensOptions& o, const py::handle& v) { o.flatten.alpha = v.cast<double>(); },
-     [](const LensOptions& o) { return number(o.flatten.alpha); }},
-    {"weights", "str",
-     [](LensOptions& o, const py::handle& v) {
-       o.flatten.weights = parse_flatten_weights(v.cast<std::string>());
-     },
-     [](const LensOptions& o) { return quoted(to_string(o.flatten.weights)); }},
-    {"texture", "str",
-     [](LensOptions& o, const py::handle& v) {
-       o.texture = parse_texture_weights(v.cast<std::string>());
-     },
-     [](const LensOptions& o) { return quoted(to_string(o.texture)); }},
-    {"boundary", "str",
-     [](LensOptions& o, const py::handle& v) {
-       o.flatten.boundary = parse_boundary(v.cast<std::string>());
-     },
-     [](const LensOptions& o) { return quoted(to_string(o.flatten.boundary)); }},
-    {"extent", "str",
-     [](LensOptions& o, const py::handle& v) { o.extent = parse_extent(v.cast<std::string>()); },
-     [](const LensOptions& o) { return quoted(to_string(o.extent)); }},
-    {"extent_factor", "float",
-     [](LensOptions& o, const py::handle& v) { o.extent_factor = v.cast<double>(); },
-     [](const LensOptions& o) { return number(o.extent_factor); }},
-    {"tolerance", "float",
-     [](LensOptions& o, const py::handle& v) { o.flatten.tolerance = v.cast<double>(); },
-     [](const LensOptions& o) { return number(o.flatten.tolerance); }},
-    {"max_iterations", "int",
-     [](LensOptions& o, const py::handle& v) { o.flatten.max_iterations = v.cast<int>(); },
-     [](const LensOptions& o) { return number(o.flatten.max_iterations); }},
-    {"threads", "int",
-     [](LensOptions& o, const py::handle& v) { o.flatten.threads = v.cast<int>(); },
-     [](const LensOptions& o) { return number(o.flatten.threads); }},
-};
+// `value` (of the field's type) as the text the field reads.
+std::string field_text(const py::handle& value, LensOptionField::Type type) {
+  if (type == LensOptionField::Type::kChoice) return value.cast<std::string>();
+  if (type == LensOptionField::Type::kInteger) return py::str(value);
+  return number_text(value.cast<double>());
+}
 
 std::string option_names() {
   std::string names;
-  for (const Option& option : kOptions)
-    names += (names.empty() ? "" : ", ") + std::string(option.name);
+  for (const LensOptionField& field : lens_option_fields())
+    names += (names.empty() ? "" : ", ") + field.name;
   return names;
 }
 
@@ -106,17 +70,19 @@ LensOptions lens_options(const py::kwargs& kwargs, const char* function) {
   LensOptions options;
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key);
-    const Option* option = nullptr;
-    for (const Option& o : kOptions)
-      if (name == o.name) option = &o;
-    if (!option)
+    const auto& fields = lens_option_fields();
+    const auto field = std::find_if(fields.begin(), fields.end(),
+                                    [&](const LensOptionField& f) { return f.name == name; });
+    if (field == fields.end())
       throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" +
                            name + "' (options: " + option_names() + ")");
+    if (!has_type(value, field->type))
+      throw py::type_error(std::string(function) + "(): " + name + " must be " +
+                           python_type(field->type) + ", got " + std::string(py::repr(value)));
     try {
-      option->set(options, value);
-    } catch (const py::cast_error&) {
-      throw py::type_error(std::string(function) + "(): " + name + " must be " + option->type +
-                           ", got " + std::string(py::repr(value)));
+      field->set(options, field_text(value, field->type));
+    } catch (const InvalidOption& e) {
+      throw InvalidInput(std::string(function) + "(): " + e.option + " " + e.problem);
     }
   }
   try {
@@ -130,8 +96,11 @@ LensOptions lens_options(const py::kwargs& kwargs, const char* function) {
 std::string lens_options_doc() {
   const LensOptions defaults;
   std::string doc;
-  for (const Option& option : kOptions)
-    doc += "    " + std::string(option.name) + "=" + option.show(defaults) + "\n";
+  for (const LensOptionField& field : lens_option_fields()) {
+    const std::string value = field.get(defaults);
+    const bool choice = field.type == LensOptionField::Type::kChoice;
+    doc += "    " + field.name + "=" + (choice ? "'" + value + "'" : value) + "\n";
+  }
   return doc;
 }
 

@@ -12,11 +12,10 @@ namespace geolens::python {
 
 namespace py = pybind11;
 
-/// The solver options named in `kwargs` (the CLI's options, '-' written '_': model, mesh,
-/// mesh_tolerance, subdivide, metric, alpha, weights, texture, boundary, extent, extent_factor,
-/// tolerance, max_iterations, threads), the others at LensOptions's defaults. Throws TypeError
-/// naming `function` for an unknown name or a value of the wrong type, InvalidInput for a value
-/// out of range (validate).
+/// The solver options named in `kwargs` (lens_option_fields, lens/lens_options.h: the CLI's
+/// options, '-' written '_', and draft_mesh), the others at LensOptions's defaults. Throws
+/// TypeError naming `function` for an unknown name or a value of the wrong type, InvalidInput for a
+/// value out of range (validate).
 LensOptions lens_options(const py::kwargs& kwargs, const char* function);
 
 /// The docstring lines that list lens_options's keywords and their defaults.

@@ -2,13 +2,16 @@
 // The lens options shared by every geolens subcommand that places lenses.
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_options.h"
 #include "geolens/lens/lens_spec.h"
 
 namespace geolens::cli {
@@ -17,19 +20,17 @@ namespace geolens::cli {
 struct LensArgs {
   std::vector<std::string> lenses;
   double zoom = 2.0;
-  std::string profile = "gaussian", metric = "paper", weights = "paper", texture = "cotan",
-              model = "focus", boundary = "sliding", extent = "global";
-  double alpha = 0.0, tolerance = 1e-3, extent_factor = 2.5, footprint = 0, mesh_tolerance = 0.2;
-  int mesh = 100, max_iterations = 100, subdivide = 0, threads = 0;
+  std::string profile = "gaussian";
+  double footprint = 0;
+  /// The solver's options as given, by name (lens_option_fields, lens/lens_options.h), each
+  /// starting as its default's text.
+  std::map<std::string, std::string> options;
 };
 
-/// Registers --lens (required), --zoom, --model, --footprint, --profile, --mesh, --mesh-tolerance,
-/// --subdivide, --metric, --alpha, --weights, --texture, --boundary, --extent, --extent-factor,
-/// --tolerance, --max-iterations and --threads on `command`.
+/// Registers --lens (required), --zoom, --profile, --footprint and every field of
+/// lens_option_fields() but draft_mesh (a session's; the CLI solves once) as --NAME, its help
+/// and default from the table, on `command`.
 void add_lens_options(CLI::App& command, LensArgs& args);
-
-/// `option` as the CLI names it: "mesh_tolerance" -> "--mesh-tolerance".
-std::string option_flag(const std::string& option);
 
 /// What `work` returns; an InvalidOption it throws (core/errors.h) is rethrown as InvalidInput
 /// in the CLI's words, `context` after it: "--mesh-tolerance: must be ...".
@@ -55,9 +56,7 @@ std::vector<Lens> parse_lenses(const LensArgs& args, const Image& source);
 /// value is left to parse_lenses to reject).
 std::vector<LensSpecFile> lens_files(const LensArgs& args);
 
-/// The size "WxH" given to --size, each side in [1, 16384] pixels; throws InvalidInput naming
-/// --size otherwise.
-std::pair<int, int> parse_size(const std::string& text);
+constexpr int kMaxSide = 16384;  ///< the largest side --size takes, pixels
 
 /// Prints a warning on stderr for each option set that the model solving `lenses` does not read
 /// (unread_options, lens/lens_options.h).

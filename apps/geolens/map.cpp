@@ -135,7 +135,7 @@ int run_map(const MapArgs& a) {
   const LensOptions options = cli::parse_options(a.lens);
   std::pair<int, int> source_size, output_size;
   std::optional<MapFrame> degrees;  // a vector map's frame: the source side is in degrees
-  if (!a.size.empty()) output_size = cli::parse_size(a.size);
+  if (!a.size.empty()) output_size = parse_size(a.size, "--size", 1, cli::kMaxSide);
   if (!a.image.empty()) {
     // Any source file: its frame is what the lenses are placed on (--size frames one without
     // pixels of its own).

@@ -27,7 +27,8 @@ void add_source_inputs(RunFiles& files, const std::string& input, const SourceAr
 
 SourceFile open_input(const std::string& input, const SourceArgs& a) {
   SourceFileOptions options;
-  if (!a.size.empty()) std::tie(options.width, options.height) = parse_size(a.size);
+  if (!a.size.empty())
+    std::tie(options.width, options.height) = parse_size(a.size, "--size", 1, kMaxSide);
   options.style = a.style;
   options.view = a.view;
   options.transfer = a.transfer;
@@ -35,7 +36,8 @@ SourceFile open_input(const std::string& input, const SourceArgs& a) {
 }
 
 std::pair<int, int> output_size(const SourceFile& file, const SourceArgs& a) {
-  return a.size.empty() ? std::pair{file.frame_width, file.frame_height} : parse_size(a.size);
+  return a.size.empty() ? std::pair{file.frame_width, file.frame_height}
+                        : parse_size(a.size, "--size", 1, kMaxSide);
 }
 
 }  // namespace geolens::cli

@@ -9,15 +9,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
+#include "geolens/lens/lens_options.h"
 #include "panel.h"
 #include "script.h"
 #include "viewer.h"
@@ -30,25 +33,14 @@ using namespace geolens::view;
 namespace {
 
 struct Args {
-  std::string image, model = "focus", method = "geometric", split, script, screenshot, size;
+  std::string image, method = "geometric", split, script, screenshot, size;
   std::string frame, style, view, transfer;  // how a source file is opened
   std::string frame_log;
   std::vector<std::string> lenses;
-  int mesh = 100, frames = 2;
+  std::map<std::string, std::string> options;  // the lens options bound (model, mesh), as given
+  int frames = 2;
   bool stats = false, redraw = false;
 };
-
-// "WxH" given to `option`, each side in [lo, hi].
-std::pair<int, int> parse_size(const std::string& text, const std::string& option, int lo, int hi) {
-  const size_t x = text.find('x');
-  require(x != std::string::npos, option.c_str(), "expected WxH, got '" + text + "'");
-  const double w = parse_number(text.substr(0, x), option + " width", true);
-  const double h = parse_number(text.substr(x + 1), option + " height", true);
-  require(w >= lo && w <= hi && h >= lo && h <= hi, option.c_str(),
-          "sides must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
-              text + "'");
-  return {int(w), int(h)};
-}
 
 // The window events, handed to the viewer (keys that are the frame loop's own go there too).
 class Input final : public WindowInput {
@@ -108,8 +100,11 @@ int run(const Args& a) {
   source.view = a.view;
   source.transfer = a.transfer;
   LensOptions options;
-  options.mesh = a.mesh;
-  options.model = parse_lens_model(a.model);
+  try {
+    for (const auto& [name, text] : a.options) lens_option_field(name).set(options, text);
+  } catch (const InvalidOption& e) {  // in the command line's words
+    throw InvalidInput(option_flag(e.option) + ": " + e.problem);
+  }
   Viewer viewer(options, a.method);
   viewer.source_options = source;
   viewer.set_split(a.split);
@@ -321,10 +316,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--split", a.split,
                  "show another method on the right half of the window, on the same lenses");
-  app.add_option("--model", a.model, "geometric lens model: focus, lift, field or auto")
-      ->capture_default_str();
-  app.add_option("--mesh", a.mesh, "grid vertices along the long side, in [4, 1000]")
-      ->capture_default_str();
+  for (const char* name : {"model", "mesh"}) {
+    const LensOptionField& field = lens_option_field(name);
+    std::string& value = a.options[name] = field.get(LensOptions{});
+    app.add_option(option_flag(name), value, field.help)
+        ->type_name(field.type == LensOptionField::Type::kInteger  ? "INT"
+                    : field.type == LensOptionField::Type::kNumber ? "FLOAT"
+                                                                   : "TEXT")
+        ->capture_default_str();
+  }
   app.add_option("--script", a.script, "play timed events from FILE (see the README)");
   app.add_option("--screenshot", a.screenshot,
                  "draw --frames frames, wait for the solver, save the view to OUT.png and exit");

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "lens_solver.h"
@@ -15,17 +16,6 @@
 namespace geolens::view {
 
 namespace fs = std::filesystem;
-
-double parse_number(const std::string& text, const std::string& what, bool integer) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  const bool ok = !text.empty() && end == text.c_str() + text.size() && std::isfinite(v) &&
-                  (!integer || v == std::floor(v));
-  if (!ok)
-    throw InvalidInput(what + ": expected " + (integer ? "an integer" : "a number") + ", got '" +
-                       text + "'");
-  return v;
-}
 
 void check_screenshot_path(const std::string& path, const std::string& input_image,
                            const std::string& what) {
@@ -57,7 +47,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
                          std::to_string(a.size()) + " arguments");
   };
   auto lens = [&](size_t i) {
-    const double v = parse_number(a[i], "lens number", true);
+    const double v = parse_integer(a[i], "lens number");
     if (v < 1) throw InvalidInput("lens numbers start at 1, got " + a[i]);
   };
   auto numbers = [&](size_t from, size_t to) {
@@ -75,7 +65,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
     count(4, 4, "LENS X Y FRAMES");
     lens(0);
     numbers(1, 3);
-    if (parse_number(a[3], "drag frames", true) < 1)
+    if (parse_integer(a[3], "drag frames") < 1)
       throw InvalidInput("drag frames must be >= 1, got " + a[3]);
   } else if (c == "zoom" || c == "radius") {
     count(2, 2, "LENS VALUE");
@@ -90,7 +80,7 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
     count(2, 2, "NAME VALUE");
     const std::string& name = a[0];
     if (name == "mesh") {
-      const double m = parse_number(a[1], "set mesh", true);
+      const double m = parse_integer(a[1], "set mesh");
       if (m < 4 || m > 1000) throw InvalidInput("set mesh: must be in [4, 1000], got " + a[1]);
     } else if (name == "method" || name == "split") {
       if (!is_method_name(a[1]) && !(name == "split" && a[1] == "off"))
@@ -177,7 +167,7 @@ std::vector<ScriptEvent> parse_script(const std::string& path, const std::string
       size_t first = 0;
       if (w[0] == "frame") {
         if (w.size() < 3) throw InvalidInput("expected 'frame N COMMAND ...'");
-        const double n = parse_number(w[1], "frame", true);
+        const double n = parse_integer(w[1], "frame");
         if (n < frame || n > 1e8)
           throw InvalidInput("frame " + w[1] + " is before the line above's frame " +
                              std::to_string(frame) + " (frames never go back)");
@@ -227,7 +217,7 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
   const std::string& c = e.command;
   auto num = [&](size_t i) { return parse_number(a[i], c); };
   auto lens = [&](size_t i) {
-    const size_t index = size_t(parse_number(a[i], "lens number", true)) - 1;
+    const size_t index = size_t(parse_integer(a[i], "lens number")) - 1;
     viewer.check_index(index, c);
     return index;
   };

@@ -70,8 +70,4 @@ class ScriptRunner {
   std::vector<Drag> drags_;
 };
 
-/// Parses a number of a script or option value; throws InvalidInput("<what>: ...") unless the
-/// whole text is a finite number (an integer when `integer`).
-double parse_number(const std::string& text, const std::string& what, bool integer = false);
-
 }  // namespace geolens::view

@@ -10,6 +10,7 @@
 /// IoError, SolverError and Cancelled for what failed or was stopped at run time.
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/core/solve_control.h"
 #include "geolens/eval/comparison.h"
 #include "geolens/eval/run_stats.h"

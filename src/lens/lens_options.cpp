@@ -1,11 +1,16 @@
 #include "geolens/lens/lens_options.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "core/enum_names.h"
 #include "core/thread_pool.h"
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/geometry/grid.h"
 
 namespace geolens {
@@ -93,6 +98,148 @@ void validate(const LensOptions& o) {
   require(o.max_calibration_solves >= 1, "validate", "at least one calibration solve needed");
   validate(o.subdivision);
   validate(o.flatten);
+}
+
+namespace {
+
+int integer(const std::string& text, const char* name) {
+  const std::optional<int> value = read_integer(text);
+  if (!value) throw InvalidOption("LensOptions", name, "must be an integer, got '" + text + "'");
+  return *value;
+}
+
+double number(const std::string& text, const char* name) {
+  const std::optional<double> value = read_number(text);
+  if (!value) throw InvalidOption("LensOptions", name, "must be a number, got '" + text + "'");
+  return *value;
+}
+
+// The rows of the table, each from the member it reads and writes: `access` is a generic lambda
+// [](auto& o) -> auto& { return o.member; }, for the getter (const) and the setter alike.
+template <class Access>
+LensOptionField integer_field(const char* name, const char* help, Access access) {
+  return {
+      name,
+      LensOptionField::Type::kInteger,
+      help,
+      {},
+      [access](const LensOptions& o) { return std::to_string(access(o)); },
+      [access, name](LensOptions& o, const std::string& text) { access(o) = integer(text, name); }};
+}
+
+template <class Access>
+LensOptionField number_field(const char* name, const char* help, Access access) {
+  return {
+      name,
+      LensOptionField::Type::kNumber,
+      help,
+      {},
+      [access](const LensOptions& o) { return number_text(access(o)); },
+      [access, name](LensOptions& o, const std::string& text) { access(o) = number(text, name); }};
+}
+
+template <class Enum, std::size_t N, class Access>
+LensOptionField choice_field(const char* name, const char* help, const EnumName<Enum> (&names)[N],
+                             Access access) {
+  std::vector<std::string> choices;
+  std::string listed;  // "a, b or c"
+  for (std::size_t i = 0; i < N; ++i) {
+    choices.push_back(names[i].name);
+    listed += std::string(i == 0 ? "" : i + 1 == N ? " or " : ", ") + names[i].name;
+  }
+  return {name,
+          LensOptionField::Type::kChoice,
+          help,
+          std::move(choices),
+          [access](const LensOptions& o) { return to_string(access(o)); },
+          [access, &names, name, listed](LensOptions& o, const std::string& text) {
+            for (const EnumName<Enum>& entry : names)
+              if (text == entry.name) {
+                access(o) = entry.value;
+                return;
+              }
+            throw InvalidOption("LensOptions", name, "must be " + listed + ", got '" + text + "'");
+          }};
+}
+
+}  // namespace
+
+const std::vector<LensOptionField>& lens_option_fields() {
+  static const std::vector<LensOptionField> fields = {
+      choice_field(
+          "model",
+          "focus (the region magnified as a whole, the context giving way within the "
+          "footprint), lift (the paper's: lifted triangles, harmonic texture), field "
+          "(the lift as a zoom field: any shape reaches its zoom at its peak) or auto "
+          "(lift for circles only, else field)",
+          kLensModels, [](auto& o) -> auto& { return o.model; }),
+      integer_field(
+          "mesh", "grid vertices along the long side, in [4, 1000]",
+          [](auto& o) -> auto& { return o.mesh; }),
+      number_field(
+          "mesh_tolerance",
+          "focus model: the grid is refined where the lens's start strays from linear "
+          "over a triangle by more than this, output pixels, or 1/400 of the smallest "
+          "lens's reach, >= 0 (0: not refined)",
+          [](auto& o) -> auto& { return o.mesh_tolerance; }),
+      integer_field(
+          "draft_mesh",
+          "a session's drafts (a drag's frames) on a grid of this many vertices along "
+          "the long side (0: mesh; else in [4, 1000])",
+          [](auto& o) -> auto& { return o.draft_mesh; }),
+      integer_field(
+          "subdivide",
+          "bisection rounds refining triangles the lift stretches, in [0, 8] (0: none)",
+          [](auto& o) -> auto& { return o.subdivision.max_levels; }),
+      choice_field(
+          "metric", "paper (Eq. 6 alpha blend) or spectrum (ARAP..ASAP)", kMetrics,
+          [](auto& o) -> auto& { return o.flatten.metric; }),
+      number_field(
+          "alpha", "metric blend: paper [0, 1), spectrum [0, 1]",
+          [](auto& o) -> auto& { return o.flatten.alpha; }),
+      choice_field(
+          "weights", "flattening weights of the lift model: paper or cotan", kFlattenWeights,
+          [](auto& o) -> auto& { return o.flatten.weights; }),
+      choice_field(
+          "texture", "texture map weights of the lift model: cotan, cotan+ or mvc", kTextureWeights,
+          [](auto& o) -> auto& { return o.texture; }),
+      choice_field(
+          "boundary", "image border: sliding, fixed or free", kBoundaries,
+          [](auto& o) -> auto& { return o.flatten.boundary; }),
+      choice_field(
+          "extent", "global (the whole image gives way) or local (a patch around the lenses)",
+          kExtents, [](auto& o) -> auto& { return o.extent; }),
+      number_field(
+          "extent_factor", "local patch half-side over the lens radius, in (1, 100]",
+          [](auto& o) -> auto& { return o.extent_factor; }),
+      number_field(
+          "tolerance", "relative energy change that stops iterating",
+          [](auto& o) -> auto& { return o.flatten.tolerance; }),
+      integer_field(
+          "max_iterations", "cap on flattening iterations",
+          [](auto& o) -> auto& { return o.flatten.max_iterations; }),
+      integer_field(
+          "threads",
+          "threads of the lens solve (and of magnify's rendering), >= 0 (0: all "
+          "cores); the results do not depend on it",
+          [](auto& o) -> auto& { return o.flatten.threads; }),
+  };
+  return fields;
+}
+
+const LensOptionField& lens_option_field(const std::string& name) {
+  for (const LensOptionField& field : lens_option_fields())
+    if (name == field.name) return field;
+  std::string names;
+  for (const LensOptionField& field : lens_option_fields())
+    names += (names.empty() ? "" : ", ") + std::string(field.name);
+  throw InvalidInput("lens_option_field: unknown option '" + name + "' (expected " + names + ")");
+}
+
+std::string option_flag(const std::string& name) {
+  std::string flag = "--" + name;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
 }
 
 }  // namespace geolens

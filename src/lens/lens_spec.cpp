@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/image.h"
 #include "geometry/polygon.h"
 
@@ -25,12 +27,10 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-double parse_number(const std::string& text, const std::string& what, const std::string& spec) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  require(!text.empty() && end == text.c_str() + text.size(), kFunction,
-          what + " '" + text + "' in '" + spec + "' is not a number");
-  return value;
+double number(const std::string& text, const std::string& what, const std::string& spec) {
+  const std::optional<double> value = read_number(text);
+  require(value.has_value(), kFunction, what + " '" + text + "' in '" + spec + "' is not a number");
+  return *value;
 }
 
 std::vector<Region> parse_regions(const std::vector<std::string>& parts, const std::string& spec,
@@ -39,11 +39,11 @@ std::vector<Region> parse_regions(const std::vector<std::string>& parts, const s
     const std::vector<std::string> numbers = split(parts[1], ',');
     require(numbers.size() == 3, kFunction,
             std::string("expected ") + kLensSpecSyntax + ", got '" + spec + "'");
-    const double radius = parse_number(numbers[2], "radius", spec);
+    const double radius = number(numbers[2], "radius", spec);
     require(std::isfinite(radius) && radius > 0, kFunction,
             "radius must be a positive number, got '" + numbers[2] + "' in '" + spec + "'");
-    const Eigen::Vector2d centre(parse_number(numbers[0], "centre x", spec),
-                                 parse_number(numbers[1], "centre y", spec));
+    const Eigen::Vector2d centre(number(numbers[0], "centre x", spec),
+                                 number(numbers[1], "centre y", spec));
     require(centre.allFinite(), kFunction,
             "the centre must be finite numbers, got '" + numbers[0] + "," + numbers[1] + "' in '" +
                 spec + "'");
@@ -108,7 +108,7 @@ std::vector<Lens> parse_lens_spec(const std::string& spec, double default_zoom, 
   const std::vector<std::string> parts = split(spec, ':');
   require(parts.size() >= 2 && parts.size() <= 3, kFunction,
           std::string("expected ") + kLensSpecSyntax + ", got '" + spec + "'");
-  const double zoom = parts.size() == 3 ? parse_number(parts[2], "zoom", spec) : default_zoom;
+  const double zoom = parts.size() == 3 ? number(parts[2], "zoom", spec) : default_zoom;
   std::vector<Lens> lenses;
   for (Region& region : parse_regions(parts, spec, width, height, warnings)) {
     lenses.push_back(Lens{std::move(region), zoom, profile, footprint});

@@ -39,23 +39,16 @@ Use use(const std::string& name, LensModel model, const LensOptions& o) {
   return {true, ""};  // read by every model
 }
 
-// Whether `name` differs from its default in `o` or in any of `lenses`.
+// Whether `name` differs from its default in `o` (its text in the table of fields) or in any of
+// `lenses` (profile, footprint).
 bool is_set(const std::string& name, const LensOptions& o, const std::vector<Lens>& lenses) {
-  const LensOptions d;
   const Lens l{Region::circle(Eigen::Vector2d::Zero(), 1)};  // its defaults
   auto any_lens = [&](auto differs) { return std::any_of(lenses.begin(), lenses.end(), differs); };
   if (name == "profile") return any_lens([&](const Lens& k) { return k.profile != l.profile; });
   if (name == "footprint")
     return any_lens([&](const Lens& k) { return k.footprint != l.footprint; });
-  if (name == "mesh_tolerance") return o.mesh_tolerance != d.mesh_tolerance;
-  if (name == "subdivide") return o.subdivision.max_levels != d.subdivision.max_levels;
-  if (name == "extent") return o.extent != d.extent;
-  if (name == "extent_factor") return o.extent_factor != d.extent_factor;
-  if (name == "texture") return o.texture != d.texture;
-  if (name == "weights") return o.flatten.weights != d.flatten.weights;
-  if (name == "metric") return o.flatten.metric != d.flatten.metric;
-  if (name == "alpha") return o.flatten.alpha != d.flatten.alpha;
-  return o.flatten.boundary != d.flatten.boundary;
+  const LensOptionField& field = lens_option_field(name);
+  return field.get(o) != field.get(LensOptions{});
 }
 
 }  // namespace

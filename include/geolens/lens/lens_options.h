@@ -4,6 +4,7 @@
 // (parse_* and to_string) and their checks (validate); and what a flattening reports.
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -152,6 +153,38 @@ struct LensOptions {
 
 /// Throws InvalidInput unless the options are in range.
 void validate(const LensOptions& options);
+
+/// One setting of LensOptions as every face names, shows and sets it (the CLI's
+/// --mesh-tolerance, Python's mesh_tolerance=, the viewer's --mesh): the faces bind this table,
+/// so none lists the options, their defaults or their help again.
+struct LensOptionField {
+  /// What the text of a value is.
+  enum class Type {
+    kInteger,  ///< decimal digits (read_integer, core/parse.h)
+    kNumber,   ///< a finite number (read_number)
+    kChoice,   ///< one of `choices`
+  };
+  std::string name;           ///< words joined by '_', as InvalidOption and unread_options name it
+  Type type = Type::kNumber;  ///< what its text is
+  std::string help;  ///< one line: what it sets, its range or its choices, the models reading it
+  std::vector<std::string> choices;  ///< kChoice: the names it takes
+  /// The value in `options` as text: an integer, a number that reads back to it (number_text,
+  /// core/errors.h) or a choice's name.
+  std::function<std::string(const LensOptions&)> get;
+  /// Sets the value in `options` from text as `get` writes it; throws InvalidOption naming the
+  /// field for text that does not read ("must be an integer, got '2.5'"). Its range is
+  /// validate()'s.
+  std::function<void(LensOptions&, const std::string&)> set;
+};
+
+/// Every field, in the order the faces list them: model, mesh, mesh_tolerance, draft_mesh,
+/// subdivide, metric, alpha, weights, texture, boundary, extent, extent_factor, tolerance,
+/// max_iterations, threads. Built once; safe to read from any thread.
+const std::vector<LensOptionField>& lens_option_fields();
+/// The field named `name`; throws InvalidInput listing the fields for any other name.
+const LensOptionField& lens_option_field(const std::string& name);
+/// `name` as the command-line faces spell it: "mesh_tolerance" -> "--mesh-tolerance".
+std::string option_flag(const std::string& name);
 
 /// What one flattening (the final solve of a GeometricLens) reports.
 struct FlattenResult {
