@@ -188,9 +188,13 @@ ScalarVolume load_nrrd(const std::string& path) {
             where + "the header has no '" + name + "' field");
     return header.value(name);
   };
+  // Read only: a message built before its field's check (arguments are evaluated first) must
+  // not add the field it is about.
   auto bad = [&](const std::string& name, const std::string& what) {
-    return where + "header line " + std::to_string(fields[name].second) + " (" + name + ": " +
-           fields[name].first.substr(0, 60) + "): " + what;
+    const auto it = fields.find(name);
+    if (it == fields.end()) return where + "the header has no '" + name + "' field";
+    return where + "header line " + std::to_string(it->second.second) + " (" + name + ": " +
+           it->second.first.substr(0, 60) + "): " + what;
   };
 
   VoxelType type = VoxelType::uint8;

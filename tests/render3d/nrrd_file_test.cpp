@@ -181,9 +181,8 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
       {"NRRD0006" + good.substr(8), "not a NRRD file"},
       {replaced("sizes: 3 2 2", "sizes 3 2 2"),
        "header line 5 'sizes 3 2 2' is not 'field: value'"},
-      // Refused, but as "header line 0 (type: ): unknown type" rather than "the header has no
-      // 'type' field" (load_nrrd's message for the field evaluates before its check).
-      {replaced("type: uint8\n", ""), "type"},
+      {replaced("type: uint8\n", ""), "the header has no 'type' field"},
+      {replaced("dimension: 3\n", ""), "the header has no 'dimension' field"},
       {replaced("type: uint8", "type: int64"), "header line 3 (type: int64): unknown type"},
       {replaced("dimension: 3", "dimension: 4"), "header line 4 (dimension: 4): only 3D volumes"},
       {replaced("sizes: 3 2 2", "sizes: 3 2"), "header line 5 (sizes: 3 2): expected three sizes"},
