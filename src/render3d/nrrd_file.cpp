@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/file_io.h"
 #include "render3d/voxel_types.h"
 
@@ -280,8 +282,9 @@ ScalarVolume load_nrrd(const std::string& path) {
   }
   const std::string line_skip = field("line skip", false);
   if (!line_skip.empty()) {
-    const long n = std::strtol(line_skip.c_str(), nullptr, 10);
-    for (long i = 0; i < n && data_start < data->size(); ++i) {
+    const std::optional<int> n = read_integer(line_skip);
+    require(n && *n >= 0, f, bad("line skip", "not a line count"));
+    for (int i = 0; i < *n && data_start < data->size(); ++i) {
       const size_t end = data->find('\n', data_start);
       data_start = end == std::string::npos ? data->size() : end + 1;
     }
@@ -297,7 +300,10 @@ ScalarVolume load_nrrd(const std::string& path) {
                                 detail::voxel_type_name(type) + " voxels (" +
                                 std::to_string(expected) + " bytes)";
   const std::string byte_skip = field("byte skip", false);
-  long long skip = byte_skip.empty() ? 0 : std::strtoll(byte_skip.c_str(), nullptr, 10);
+  char* skip_end = nullptr;
+  const long long skip = byte_skip.empty() ? 0 : std::strtoll(byte_skip.c_str(), &skip_end, 10);
+  require(byte_skip.empty() || skip_end == byte_skip.c_str() + byte_skip.size(), f,
+          bad("byte skip", "not -1 or a byte count"));
   std::string inflated;
   const unsigned char* samples = nullptr;
   if (encoding == "raw") {

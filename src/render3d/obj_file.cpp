@@ -37,7 +37,8 @@ void check_numbers(const std::string& text, const std::string& path) {
     words >> kind;
     if (kind != "v" && kind != "f") continue;
     const std::string at = "'" + path + "': line " + std::to_string(number) + ": ";
-    for (int k = 0; words >> word; ++k) {
+    int k = 0;
+    for (; words >> word; ++k) {
       if (kind == "v") {
         double value = 0;
         const auto [end, status] = std::from_chars(word.data(), word.data() + word.size(), value);
@@ -52,6 +53,8 @@ void check_numbers(const std::string& text, const std::string& path) {
                 "load_obj", at + "face index '" + quoted_line(index) + "' is out of range");
       }
     }
+    require(kind != "v" || k >= 3, "load_obj",
+            at + "a vertex has " + std::to_string(k) + " coordinates, 3 needed");
   }
 }
 

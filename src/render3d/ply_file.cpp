@@ -249,8 +249,10 @@ TriangleMesh load_ply(const std::string& path) {
         for (int i = 0; i < int(count); ++i) {
           const double index = body.value(*property.type);
           if (!is_corners) continue;
-          if (index < 0 || index >= double(vertex->count) || index != std::floor(index))
-            body.fail("names vertex " + std::to_string(index) + ", outside [0, " +
+          if (index != std::floor(index))
+            body.fail("names vertex " + number_text(index) + ", not a whole number");
+          if (index < 0 || index >= double(vertex->count))
+            body.fail("names vertex " + number_text(index) + ", outside [0, " +
                       std::to_string(vertex->count) + ")");
           corners.push_back(int(index));
         }

@@ -194,6 +194,8 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
       {good.substr(0, good.size() - 5),
        "the header claims 3 x 2 x 2 uint8 voxels (12 bytes), the data holds 7 bytes"},
       {small_header("byte skip: 3\n") + data, "the data holds 9 bytes"},
+      {small_header("byte skip: lots\n") + data, "(byte skip: lots): not -1 or a byte count"},
+      {small_header("line skip: 2.5\n") + data, "(line skip: 2.5): not a line count"},
       {small_header().substr(0, small_header().size() - 1), "no data"},
   };
   int i = 0;

@@ -136,6 +136,8 @@ TEST_F(ObjFile, RefusesBadFilesNamingTheReaderAndTheFile) {
   expect_refused("infinite.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
                  "line 2: vertex coordinate '1e999' is not a finite number");
   expect_refused("word.obj", "v 0 0 0\nv one 0 0\nv 0 1 0\nf 1 2 3\n", "line 2");
+  expect_refused("flat.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n",
+                 "line 2: a vertex has 2 coordinates, 3 needed");
   expect_refused("empty.obj", "", "");
   const std::string nowhere = path("nowhere.obj");
   const std::string message = test::refusal([&] { load_obj(nowhere); });

@@ -207,7 +207,8 @@ TEST_F(PlyFile, RefusesBadRowsNamingTheElementAndTheRow) {
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
       "float z\nelement face 2\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 "
       "0\n0 1 0\n3 0 1 2\n";
-  EXPECT_NE(refusal("fraction.ply", head + "3 0 1 1.5\n").find("face 1 of 2: names vertex 1.5"),
+  EXPECT_NE(refusal("fraction.ply", head + "3 0 1 1.5\n")
+                .find("face 1 of 2: names vertex 1.5, not a whole number"),
             std::string::npos);
   EXPECT_NE(refusal("negative.ply", head + "3 0 -1 2\n").find("face 1 of 2: names vertex -1"),
             std::string::npos);
