@@ -514,7 +514,7 @@ struct Ring {
   // last three, so the edge does not turn sharply at an image corner, where the ring would shear
   // the mesh's triangles until they fold; it is the plain minimum where the farther is 9/7 of
   // the nearer or more, so the footprint of a circle clear of the border is the
-  // group's disk, the circle its mesh follows (FocusPipeline::base_grid).
+  // group's disk, the circle its mesh follows (FocusPipeline::base_mesh).
   double edge(const Eigen::Vector2d& u) const { return edge(u, inner(u)); }
   // The same, given inner(u).
   double edge(const Eigen::Vector2d& u, double inner_u) const {

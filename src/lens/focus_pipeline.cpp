@@ -14,11 +14,11 @@ namespace geolens {
 
 namespace {
 
-// The refinement's tolerance relative to a region's reach (base_grid).
+// The refinement's tolerance relative to a region's reach (base_mesh).
 constexpr double kRelativeTolerance = 1.0 / 400;
 
 // How far, in cells, lenses whose footprint the image border cuts may move before their mesh is
-// made anew (moved_grid): the deformed mesh's picture drifts from a fresh mesh's as the border
+// made anew (moved_mesh): the deformed mesh's picture drifts from a fresh mesh's as the border
 // bends the ring anew (test DraggedAlongTheBorder: within 0.25 px of a 4x finer solve at 1.5
 // cells, like a fresh mesh; 0.41 at 2 cells, 1.6 at 3).
 constexpr double kMovedMeshDrift = 1.5;
@@ -88,15 +88,15 @@ Eigen::AlignedBox2d FocusPipeline::solved_box(const std::vector<Lens>& lenses) c
   return box.intersection(image);
 }
 
-Grid FocusPipeline::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
-                              std::vector<int>* on_curve) const {
+BaseMesh FocusPipeline::base_mesh(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
+                                  bool draft, std::vector<int>* on_curve) const {
   box = solved_box(lenses);
   Grid patch = make_grid(box.sizes().x(), box.sizes().y(), c_.options.mesh);
   patch.V.rowwise() += box.min().transpose();
   const double cell = cell_size(box);
   if (!meshed_along_regions(lenses, cell)) {
     if (on_curve) on_curve->assign(size_t(patch.V.rows()), -1);
-    return patch;
+    return BaseMesh(patch);
   }
   // Vertices on every region's boundary and footprint's edge, so no triangle crosses them, and
   // smaller triangles where the start bends.
@@ -113,10 +113,11 @@ Grid FocusPipeline::base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox
     for (const Lens& lens : lenses)
       refine.tolerance = std::min(refine.tolerance, kRelativeTolerance * lens.region.reach());
   }
-  static_cast<PlanarMesh&>(patch) =
+  BaseMesh mesh(patch);
+  static_cast<PlanarMesh&>(mesh) =
       conform_mesh(patch, focus_curves(lenses, cell, band, c_.width, c_.height), 0.4 * patch.cell,
                    refine, on_curve);
-  return patch;
+  return mesh;
 }
 
 // Whether every focus group's footprint is clear of the image border (footprint_clear_of_border).
@@ -133,23 +134,24 @@ bool FocusPipeline::clear_of_border(const std::vector<Lens>& lenses) const {
 // Else the border bends the map differently where the lenses now are: the mesh deforms with them
 // (moved_focus_mesh), and is made anew once they have drifted kMovedMeshDrift cells from where it
 // was made.
-std::optional<Grid> FocusPipeline::moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
-                                              Eigen::AlignedBox2d& box) const {
+std::optional<BaseMesh> FocusPipeline::moved_mesh(const MeshMemo& memo,
+                                                  const std::vector<Lens>& lenses,
+                                                  Eigen::AlignedBox2d& box) const {
   box = solved_box(lenses);
-  Grid grid = memo.grid;
+  BaseMesh mesh = memo.mesh;
   if (memo.clear && clear_of_border(lenses)) {
-    grid.V.rowwise() += (box.min() - memo.box.min()).transpose();
-    return grid;
+    mesh.V.rowwise() += (box.min() - memo.box.min()).transpose();
+    return mesh;
   }
   const double cell = cell_size(box);
   const double shift = (lenses[0].region.peak() - memo.lenses[0].region.peak()).norm();
   if (memo.drift + shift > kMovedMeshDrift * cell) return std::nullopt;
   std::optional<Eigen::MatrixX2d> V =
-      moved_focus_mesh(memo.grid, memo.on_curve, memo.lenses, memo.box, cell_size(memo.box), lenses,
+      moved_focus_mesh(memo.mesh, memo.on_curve, memo.lenses, memo.box, cell_size(memo.box), lenses,
                        box, cell, c_.width, c_.height, *c_.pool);
   if (!V) return std::nullopt;
-  grid.V = std::move(*V);
-  return grid;
+  mesh.V = std::move(*V);
+  return mesh;
 }
 
 std::vector<Lens> FocusPipeline::fitting(const std::vector<Lens>& lenses,
@@ -229,7 +231,7 @@ FittedLenses FocusPipeline::unfitted(const std::vector<Lens>& lenses) const {
   for (const Lens& lens : lenses) validate_lens(lens, c_.width, c_.height);
   FittedLenses fit;
   fit.lenses = lenses;
-  fit.grid = base_grid(lenses, fit.box, false, nullptr);
+  fit.mesh = base_mesh(lenses, fit.box, false, nullptr);
   return fit;
 }
 
@@ -280,23 +282,23 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
     report_group_zooms(lenses, out, c_.width, c_.height, fit);
   };
   if (memo && moved_only(memo->lenses, out)) {
-    if (std::optional<Grid> moved = moved_grid(*memo, out, fit.box)) {
-      fit.grid = std::move(*moved);
+    if (std::optional<BaseMesh> moved = moved_mesh(*memo, out, fit.box)) {
+      fit.mesh = std::move(*moved);
       memo->drift += (out[0].region.peak() - memo->lenses[0].region.peak()).norm();
       memo->lenses = out;
       memo->box = fit.box;
-      memo->grid = fit.grid;
+      memo->mesh = fit.mesh;
       lower(memo->unfolding);
       return fit;
     }
   }
   std::vector<int> on_curve;
-  fit.grid = base_grid(out, fit.box, draft, &on_curve);
+  fit.mesh = base_mesh(out, fit.box, draft, &on_curve);
   const double cell = cell_size(fit.box);
   const std::vector<double> unfolding =
-      unfolding_zooms(fit.grid, out, cell, focus_band(out, cell), c_.width, c_.height, *c_.pool);
+      unfolding_zooms(fit.mesh, out, cell, focus_band(out, cell), c_.width, c_.height, *c_.pool);
   if (memo)
-    *memo = MeshMemo{out, fit.box, fit.grid, unfolding, std::move(on_curve), clear_of_border(out)};
+    *memo = MeshMemo{out, fit.box, fit.mesh, unfolding, std::move(on_curve), clear_of_border(out)};
   lower(unfolding);
   return fit;
 }

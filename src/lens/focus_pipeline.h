@@ -23,7 +23,7 @@ class FocusPipeline final : public LensPipeline {
                       bool draft) const override;
   FittedLenses unfitted(const std::vector<Lens>& lenses) const override;
   PlanarMesh solved_mesh(const FittedLenses& fit, const std::vector<double>&) const override {
-    return fit.grid;
+    return fit.mesh;
   }
   LensResult solve_once(const Eigen::AlignedBox2d& box, const std::vector<Lens>& lenses,
                         const PlanarMesh& mesh, const std::vector<double>& h, SolveCache& cache,
@@ -35,11 +35,11 @@ class FocusPipeline final : public LensPipeline {
   // The grid over the footprints' box (`box`), made to follow every region's boundary and
   // footprint's edge and, unless a draft, refined where the start bends; `on_curve` as
   // conform_mesh gives it.
-  Grid base_grid(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
-                 std::vector<int>* on_curve) const;
+  BaseMesh base_mesh(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
+                     std::vector<int>* on_curve) const;
   bool clear_of_border(const std::vector<Lens>& lenses) const;
-  std::optional<Grid> moved_grid(const MeshMemo& memo, const std::vector<Lens>& lenses,
-                                 Eigen::AlignedBox2d& box) const;
+  std::optional<BaseMesh> moved_mesh(const MeshMemo& memo, const std::vector<Lens>& lenses,
+                                     Eigen::AlignedBox2d& box) const;
   // The lenses at the largest zooms up to theirs that fit where they are, their footprints at
   // those zooms (fitting_zooms), with what limits each in `reasons`; lenses near each other
   // magnified as one where that gives them more, unless not `merge`.

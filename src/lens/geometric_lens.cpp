@@ -7,7 +7,6 @@
 
 #include "core/thread_pool.h"
 #include "geolens/core/errors.h"
-#include "lens/calibration.h"
 #include "lens/lens_pipeline.h"
 #include "lens/solve_cache.h"
 
@@ -58,10 +57,7 @@ LensResult GeometricLens::solve_with_heights(const std::vector<Lens>& lenses,
 LensResult GeometricLens::solve(const std::vector<Lens>& asked, const SolveControl& control) const {
   const LensPipeline& pipeline = *impl_->pipeline;
   const FittedLenses fit = pipeline.fitted(asked, nullptr, false);
-  const LensModel model = pipeline.model_for(fit.lenses);
-  std::vector<double> h;
-  for (const Lens& lens : fit.lenses)
-    h.push_back(lens.zoom == 1 ? 0.0 : initial_height(lens, model, fit.grid.cell));
+  const std::vector<double> h = pipeline.start_heights(fit);
   SolveCache cache;
   return pipeline.calibrated(fit, pipeline.solved_mesh(fit, h), h, cache, control);
 }

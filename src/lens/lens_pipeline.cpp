@@ -82,6 +82,18 @@ void LensPipeline::prepare_flattener(const Lifted& lifted, const FocusConstraint
   r.timings.factorize = ms_since(t);
 }
 
+std::vector<double> LensPipeline::start_heights(
+    const FittedLenses& fit, const std::function<std::optional<double>(size_t)>& known) const {
+  const LensModel model = model_for(fit.lenses);
+  std::vector<double> h;
+  for (size_t k = 0; k < fit.lenses.size(); ++k) {
+    const Lens& lens = fit.lenses[k];
+    const std::optional<double> last = lens.zoom == 1 || !known ? std::nullopt : known(k);
+    h.push_back(lens.zoom == 1 ? 0.0 : last ? *last : initial_height(lens, model, fit.mesh.cell));
+  }
+  return h;
+}
+
 void LensPipeline::flatten_and_finish(
     const std::function<FlattenResult(const SolveControl&)>& flatten,
     const std::vector<Lens>& lenses, const Lifted& lifted, Boundary boundary,

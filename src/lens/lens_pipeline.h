@@ -11,6 +11,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "geolens/lens/geometric_lens.h"
 #include "lens/flatten.h"
 #include "lens/lift.h"
+#include "lens/solve_cache.h"
 
 namespace geolens {
 
@@ -36,7 +38,7 @@ struct LensContext {
 /// The lenses to solve and the mesh to solve them on (LensPipeline::fitted).
 struct FittedLenses {
   std::vector<Lens> lenses;  ///< validated; kFocus: each at the zoom it is solved at
-  Grid grid;                 ///< the mesh before the lift's subdivision
+  BaseMesh mesh;             ///< the mesh before the lift's subdivision
   Eigen::AlignedBox2d box;   ///< the area it covers, pixels
   /// kFocus: per lens, the zoom fitted, what limits it (empty where it is the zoom asked) and
   /// whether the mesh held it back (LensResult's fields of the same names). Empty otherwise.
@@ -63,6 +65,13 @@ class LensPipeline {
   /// refined.
   virtual FittedLenses fitted(const std::vector<Lens>& lenses, SolveCache* cache,
                               bool draft) const = 0;
+
+  /// The heights a calibration of `fit`'s lenses starts from (one per lens, as `calibrated`
+  /// takes them): 0 for a lens of zoom 1, else `known(k)` where that has one (a session's
+  /// heights of the same lens last frame), else the model's first guess (initial_height).
+  std::vector<double> start_heights(
+      const FittedLenses& fit,
+      const std::function<std::optional<double>(size_t)>& known = nullptr) const;
 
   /// The lenses' mesh with no fitting (solve_with_heights): `lenses` as given.
   virtual FittedLenses unfitted(const std::vector<Lens>& lenses) const = 0;

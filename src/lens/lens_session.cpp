@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "geolens/core/errors.h"
-#include "lens/calibration.h"
 #include "lens/lens_pipeline.h"
 #include "lens/solve_cache.h"
 
@@ -55,23 +54,20 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
   // model): after a move, one solve usually confirms them.
   const std::vector<Lens>& lenses = fit.lenses;
   const LensModel model = solver.model_for(lenses);
-  std::vector<double> h;
-  for (size_t k = 0; k < lenses.size(); ++k) {
+  const std::vector<double> h = solver.start_heights(fit, [&](size_t k) -> std::optional<double> {
     const Lens& lens = lenses[k];
     const bool known = k < s.lenses.size() && s.model == model && s.lenses[k].zoom == lens.zoom &&
                        s.lenses[k].profile == lens.profile &&
                        s.lenses[k].region.kind() == lens.region.kind() &&
                        s.lenses[k].region.size() == lens.region.size();
-    h.push_back(lens.zoom == 1 ? 0.0
-                : known        ? s.heights[k]
-                               : initial_height(lens, model, fit.grid.cell));
-  }
+    return known ? std::optional<double>(s.heights[k]) : std::nullopt;
+  });
   Eigen::MatrixX2d before = cache.flat;
   const Eigen::Vector2d box_before = cache.box.min();
   if (s.change.rows() == before.rows()) cache.predicted = before + s.change;
   LensResult r;
   try {
-    r = solver.calibrated(fit, fit.grid, h, cache, control);
+    r = solver.calibrated(fit, fit.mesh, h, cache, control);
   } catch (const Cancelled&) {
     // The cache holds a consistent flattener and the last finished flattening, but no steady
     // motion to predict from.

@@ -36,18 +36,18 @@ FittedLenses LiftPipeline::unfitted(const std::vector<Lens>& lenses) const {
   fit.box = solved_box(lenses);
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(c_.width, c_.height));
   if (fit.box.isApprox(image)) {
-    fit.grid = c_.grid;
+    fit.mesh = BaseMesh(c_.grid);
     return fit;
   }
-  fit.grid = make_grid(fit.box.sizes().x(), fit.box.sizes().y(), c_.options.mesh);
-  fit.grid.V.rowwise() += fit.box.min().transpose();
+  fit.mesh = BaseMesh(make_grid(fit.box.sizes().x(), fit.box.sizes().y(), c_.options.mesh));
+  fit.mesh.V.rowwise() += fit.box.min().transpose();
   return fit;
 }
 
 // The grid subdivided where the bump of heights `h` bends.
 PlanarMesh LiftPipeline::solved_mesh(const FittedLenses& fit, const std::vector<double>& h) const {
   return subdivide(
-      fit.grid, [&](const Eigen::Vector2d& p) { return lift_height(fit.lenses, h, p); },
+      fit.mesh, [&](const Eigen::Vector2d& p) { return lift_height(fit.lenses, h, p); },
       c_.options.subdivision);
 }
 

@@ -13,15 +13,24 @@
 
 namespace geolens {
 
+/// The mesh a solve starts from, before the lift's subdivision: a grid over the solved area, or
+/// (kFocus) that grid made to follow the regions and footprints and refined where the start
+/// bends, and so no longer a grid.
+struct BaseMesh : PlanarMesh {
+  BaseMesh() = default;
+  explicit BaseMesh(const Grid& grid) : PlanarMesh(grid), cell(grid.cell) {}
+  double cell = 0;  ///< the mean cell side of the grid it was made from, pixels
+};
+
 // The focus lens's mesh of one frame (its grid made to follow the regions and footprints and
 // refined where the start bends), kept for the next: a lens moved clear of the image border has
 // the same mesh, translated, so the next frame neither remeshes nor refactorizes; one whose
 // footprint the border cuts, the same mesh deformed with it for a few cells
-// (FocusPipeline::moved_grid).
+// (FocusPipeline::moved_mesh).
 struct MeshMemo {
   std::vector<Lens> lenses;       // as meshed (fitted) or last moved to
   Eigen::AlignedBox2d box;        // the mesh's
-  Grid grid;                      // the mesh
+  BaseMesh mesh;                  // the mesh
   std::vector<double> unfolding;  // unfolding_zooms on it when made
   std::vector<int> on_curve;      // conform_mesh's: per vertex, the curve it lies on, or -1
   bool clear = false;             // made with every footprint clear of the image border
