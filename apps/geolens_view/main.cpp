@@ -77,9 +77,8 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
 }
 
-int run(const Args& a) {
-  using Clock = std::chrono::steady_clock;
-  // Everything is checked before a window opens.
+// Everything checked before a window opens.
+void check_arguments(const Args& a) {
   require(a.screenshot.empty() || !a.image.empty(), "--screenshot", "needs an IMAGE");
   require(a.script.empty() || !a.image.empty(), "--script", "needs an IMAGE");
   require(a.frames >= 1, "--frames", "must be >= 1, got " + std::to_string(a.frames));
@@ -91,21 +90,27 @@ int run(const Args& a) {
     require(a.image.empty() || !same_file(a.frame_log, a.image), "--frame-log",
             "'" + a.frame_log + "' is the input image; it is never overwritten");
   }
-  const auto [width, height] =
-      a.size.empty() ? std::pair{1280, 800} : parse_size(a.size, "--size", 64, 8192);
-  SourceFileOptions source;
-  if (!a.frame.empty())
-    std::tie(source.width, source.height) = parse_size(a.frame, "--frame", 1, 16384);
-  source.style = a.style;
-  source.view = a.view;
-  source.transfer = a.transfer;
+}
+
+// The lens options given (--model, --mesh), in the command line's words when wrong.
+LensOptions lens_options(const Args& a) {
   LensOptions options;
   try {
     for (const auto& [name, text] : a.options) lens_option_field(name).set(options, text);
   } catch (const InvalidOption& e) {  // in the command line's words
     throw InvalidInput(option_flag(e.option) + ": " + e.problem);
   }
-  Viewer viewer(options, a.method);
+  return options;
+}
+
+// The viewer's source options, file and lenses as the arguments give them.
+void open(Viewer& viewer, const Args& a) {
+  SourceFileOptions source;
+  if (!a.frame.empty())
+    std::tie(source.width, source.height) = parse_size(a.frame, "--frame", 1, 16384);
+  source.style = a.style;
+  source.view = a.view;
+  source.transfer = a.transfer;
   viewer.source_options = source;
   viewer.set_split(a.split);
   if (!a.image.empty()) viewer.open_file(a.image);
@@ -118,6 +123,137 @@ int run(const Args& a) {
     }
   }
   viewer.select(std::nullopt);
+}
+
+// What the GPU holds per pane: the frame's generation, the frame and scale of its heatmap (0:
+// none), and the viewer's detail picture (its generation; pane 0 only).
+struct Shown {
+  std::uint64_t frame = 0, heat_frame = 0, detail = 0;
+  double heat_max = 0;
+};
+
+// The frames' timings --stats prints, milliseconds.
+struct FrameTimes {
+  std::vector<double> frame_ms, latency_ms, solve_ms;
+  int frames_while_opening = 0;  // frames drawn while a file opened or a view rendered
+};
+
+// Pane `pane` of the frame: its warp, heat map and detail sent to the GPU where they changed
+// since `on_gpu`, then drawn.
+void draw_pane(int pane, Viewer& viewer, const Window& window, WarpRenderer& renderer,
+               Shown& on_gpu) {
+  const SolvedFrame& solved = pane == 0 ? viewer.frame() : viewer.split_frame();
+  if (!solved.result) return;  // no image yet
+  const FrameMeasures& measures = pane == 0 ? viewer.measures() : viewer.split_measures();
+  const std::uint64_t generation =
+      pane == 0 ? viewer.frame_generation() : viewer.split_generation();
+  if (on_gpu.frame != generation) {
+    renderer.set_mesh(pane, solved.result->warp);
+    on_gpu.frame = generation;
+  }
+  if (viewer.heatmap &&
+      (on_gpu.heat_frame != on_gpu.frame || on_gpu.heat_max != viewer.heat_max())) {
+    renderer.set_heat(pane, solved.result->warp,
+                      heat_colours(measures.triangles, viewer.heat_max()));
+    on_gpu.heat_frame = on_gpu.frame;
+    on_gpu.heat_max = viewer.heat_max();
+  }
+  // The frame's detail, where the source has some and it is rendered for this view.
+  const DetailPicture* detail = pane == 0 ? viewer.detail_picture() : nullptr;
+  if (detail && on_gpu.detail != viewer.detail_generation()) {
+    renderer.set_detail(detail->image,
+                        {detail->view.x, detail->view.y, detail->view.width, detail->view.height});
+    on_gpu.detail = viewer.detail_generation();
+  }
+  DrawSettings settings;
+  settings.detail = detail != nullptr;
+  settings.window_width = window.framebuffer_width();
+  settings.window_height = window.framebuffer_height();
+  settings.pane = pane;
+  settings.clip_x = pane * viewer.pane_width();
+  settings.clip_width = viewer.pane_width();
+  settings.origin = viewer.origin() + pane * viewer.pane_offset();
+  settings.scale = viewer.has_image() ? viewer.scale() : 0;
+  settings.wireframe = viewer.wireframe;
+  settings.heatmap = viewer.heatmap;
+  if (viewer.outlines)
+    for (const Lens& lens : solved.lenses)
+      if (const std::optional<Circle> c = lens.region.circle())
+        settings.outlines.emplace_back(c->center.x(), c->center.y(), c->radius);
+  if (viewer.selected() && solved.lenses.size() == viewer.lenses().size())
+    settings.selected = int(*viewer.selected());
+  renderer.draw(settings);
+}
+
+// What --stats prints at exit.
+void print_stats(const FrameTimes& times, const Viewer& viewer, const Window& window,
+                 const WarpRenderer& renderer) {
+  std::printf(
+      "frames %zu: frame time median %.1f ms, p95 %.1f ms; move to shown (%zu frames shown) "
+      "median %.1f ms, p95 %.1f ms; solves shown median %.1f ms; solve (last) %.1f ms; %s\n",
+      times.frame_ms.size() + 1, percentile(times.frame_ms, 0.5), percentile(times.frame_ms, 0.95),
+      times.latency_ms.size(), percentile(times.latency_ms, 0.5),
+      percentile(times.latency_ms, 0.95), percentile(times.solve_ms, 0.5), viewer.frame().solve_ms,
+      window.gl_description().c_str());
+  if (const std::optional<StageTimings>& t = viewer.frame().stages)
+    std::printf(
+        "stages of the last solve (calibration solves: %d): lift %.2f ms, texture %.2f ms, "
+        "factorize %.2f ms, iterate %.2f ms, total %.2f ms\n",
+        viewer.frame().solves, t->lift, t->texture, t->factorize, t->iterate, t->total);
+  else
+    std::printf("stages: none (%s)\n", viewer.method().c_str());
+  std::printf("texture: level %d of the image, %d x %d texels\n", renderer.texture_level(),
+              renderer.texture_width(), renderer.texture_height());
+  if (const DetailPicture* d = viewer.detail_picture())
+    std::printf("detail: shown, %d x %d texels for %d x %d window pixels, rendered in %.1f ms\n",
+                d->image.width, d->image.height, d->view.width, d->view.height, d->render_ms);
+  else
+    std::printf("detail: none shown (%s)\n",
+                viewer.has_detail() ? "not ready or off" : "the source has none");
+  std::printf(
+      "opened: %d files or views opened and rendered off the UI thread, the last in %.1f ms; "
+      "%d frames drawn meanwhile; longest frame %.1f ms\n",
+      viewer.opened_count(), viewer.opened_ms(), times.frames_while_opening,
+      times.frame_ms.empty() ? 0.0
+                             : *std::max_element(times.frame_ms.begin(), times.frame_ms.end()));
+  const CacheCounts& counts = renderer.cache_counts();
+  std::printf(
+      "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures drawn "
+      "whole %d, in part %d, reused %d\n",
+      renderer.moved_triangles(0), renderer.triangles(0), counts.full, counts.partial,
+      counts.reused);
+}
+
+// A --frame-log row per lens of a frame that shows a new solve: where it is, the zoom asked and
+// the zoom it was solved at.
+void log_frame(int frame, const SolvedFrame& solved, std::string& log) {
+  for (size_t k = 0; k < solved.lenses.size(); ++k) {
+    const Eigen::Vector2d p = solved.lenses[k].region.peak();
+    char row[160];
+    std::snprintf(row, sizeof row, "%d,%zu,%.17g,%.17g,%.17g,%.17g,%d\n", frame, k + 1, p.x(),
+                  p.y(), solved.lenses[k].zoom, solved.result->zoom_parameter.at(k),
+                  int(solved.result->draft));
+    log += row;
+  }
+}
+
+// The picture the panel asked for, saved; the panel's message says where, or why not.
+void save_panel_shot(const std::string& path, const Window& window, Viewer& viewer) {
+  try {
+    save_image(path, window.read_back_buffer());
+    viewer.message = "saved " + path;
+  } catch (const std::exception& e) {
+    viewer.message = e.what();
+  }
+}
+
+int run(const Args& a) {
+  using Clock = std::chrono::steady_clock;
+  check_arguments(a);
+  const auto [width, height] =
+      a.size.empty() ? std::pair{1280, 800} : parse_size(a.size, "--size", 64, 8192);
+  Viewer viewer(lens_options(a), a.method);
+  open(viewer, a);
   ScriptRunner script;
   if (!a.script.empty()) script = ScriptRunner(a.script, parse_script(a.script, a.image));
 
@@ -130,18 +266,11 @@ int run(const Args& a) {
   PanelState panel;
   std::optional<std::string> panel_shot;  // asked in the panel: taken at the next frame
   std::uint64_t shown_image = 0;
-  // What the GPU holds per pane: the frame's generation, the frame and scale of its heatmap (0:
-  // none), and the viewer's detail picture (its generation; pane 0 only).
-  struct Shown {
-    std::uint64_t frame = 0, heat_frame = 0, detail = 0;
-    double heat_max = 0;
-  };
   std::array<Shown, WarpRenderer::kPanes> shown;
-  std::vector<double> frame_ms, latency_ms, solve_ms;
+  FrameTimes times;
   // --frame-log: per frame that shows a new solve, per lens where it is, the zoom asked and the
   // zoom it was solved at (written at exit).
   std::string frame_log = "frame,lens,x,y,zoom_asked,zoom_got,draft\n";
-  int frames_while_opening = 0;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
     window.poll();
@@ -155,7 +284,7 @@ int run(const Args& a) {
     else
       viewer.update();
     // A frame drawn while a file opens or a view renders off the UI thread (the image before).
-    if (!viewer.status().empty()) ++frames_while_opening;
+    if (!viewer.status().empty()) ++times.frames_while_opening;
     const bool fresh = viewer.frame_generation() != shown[0].frame;
     if (viewer.image_generation() != shown_image) {
       renderer.set_image(viewer.image());
@@ -163,63 +292,14 @@ int run(const Args& a) {
     }
     const int panes = viewer.split().empty() ? 1 : 2;
     renderer.clear(window.framebuffer_width(), window.framebuffer_height());
-    for (int pane = 0; pane < panes; ++pane) {
-      const SolvedFrame& solved = pane == 0 ? viewer.frame() : viewer.split_frame();
-      if (!solved.result) continue;  // no image yet
-      const FrameMeasures& measures = pane == 0 ? viewer.measures() : viewer.split_measures();
-      const std::uint64_t generation =
-          pane == 0 ? viewer.frame_generation() : viewer.split_generation();
-      Shown& on_gpu = shown[size_t(pane)];
-      if (on_gpu.frame != generation) {
-        renderer.set_mesh(pane, solved.result->warp);
-        on_gpu.frame = generation;
-      }
-      if (viewer.heatmap &&
-          (on_gpu.heat_frame != on_gpu.frame || on_gpu.heat_max != viewer.heat_max())) {
-        renderer.set_heat(pane, solved.result->warp,
-                          heat_colours(measures.triangles, viewer.heat_max()));
-        on_gpu.heat_frame = on_gpu.frame;
-        on_gpu.heat_max = viewer.heat_max();
-      }
-      // The frame's detail, where the source has some and it is rendered for this view.
-      const DetailPicture* detail = pane == 0 ? viewer.detail_picture() : nullptr;
-      if (detail && on_gpu.detail != viewer.detail_generation()) {
-        renderer.set_detail(detail->image, {detail->view.x, detail->view.y, detail->view.width,
-                                            detail->view.height});
-        on_gpu.detail = viewer.detail_generation();
-      }
-      DrawSettings settings;
-      settings.detail = detail != nullptr;
-      settings.window_width = window.framebuffer_width();
-      settings.window_height = window.framebuffer_height();
-      settings.pane = pane;
-      settings.clip_x = pane * viewer.pane_width();
-      settings.clip_width = viewer.pane_width();
-      settings.origin = viewer.origin() + pane * viewer.pane_offset();
-      settings.scale = viewer.has_image() ? viewer.scale() : 0;
-      settings.wireframe = viewer.wireframe;
-      settings.heatmap = viewer.heatmap;
-      if (viewer.outlines)
-        for (const Lens& lens : solved.lenses)
-          if (const std::optional<Circle> c = lens.region.circle())
-            settings.outlines.emplace_back(c->center.x(), c->center.y(), c->radius);
-      if (viewer.selected() && solved.lenses.size() == viewer.lenses().size())
-        settings.selected = int(*viewer.selected());
-      renderer.draw(settings);
-    }
+    for (int pane = 0; pane < panes; ++pane)
+      draw_pane(pane, viewer, window, renderer, shown[size_t(pane)]);
     // Pictures of the view alone, then of the view with the panel.
     for (const ScriptActions::Shot& shot : actions.screenshots)
       if (!shot.panel) save_image(shot.path, window.read_back_buffer());
     if (final) save_image(a.screenshot, window.read_back_buffer());
-    if (panel_shot) {
-      try {
-        save_image(*panel_shot, window.read_back_buffer());
-        viewer.message = "saved " + *panel_shot;
-      } catch (const std::exception& e) {
-        viewer.message = e.what();
-      }
-      panel_shot.reset();
-    }
+    if (panel_shot) save_panel_shot(*panel_shot, window, viewer);
+    panel_shot.reset();
     window.begin_ui();
     draw_overlays(viewer);
     if (viewer.panel) panel_shot = draw_panel(viewer, panel).screenshot;
@@ -231,60 +311,18 @@ int run(const Args& a) {
     const double ms = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
     panel.frame_ms = panel.frame_ms == 0 ? ms : 0.9 * panel.frame_ms + 0.1 * ms;
-    if (frame > 0) frame_ms.push_back(ms);
+    if (frame > 0) times.frame_ms.push_back(ms);
     if (fresh && frame > 0) {
-      latency_ms.push_back(
+      times.latency_ms.push_back(
           std::chrono::duration<double, std::milli>(now - viewer.frame_requested_at()).count());
-      solve_ms.push_back(viewer.frame().solve_ms);
+      times.solve_ms.push_back(viewer.frame().solve_ms);
     }
-    if (!a.frame_log.empty() && fresh && viewer.frame().result) {
-      const SolvedFrame& solved = viewer.frame();
-      for (size_t k = 0; k < solved.lenses.size(); ++k) {
-        const Eigen::Vector2d p = solved.lenses[k].region.peak();
-        char row[160];
-        std::snprintf(row, sizeof row, "%d,%zu,%.17g,%.17g,%.17g,%.17g,%d\n", frame, k + 1, p.x(),
-                      p.y(), solved.lenses[k].zoom, solved.result->zoom_parameter.at(k),
-                      int(solved.result->draft));
-        frame_log += row;
-      }
-    }
+    if (!a.frame_log.empty() && fresh && viewer.frame().result)
+      log_frame(frame, viewer.frame(), frame_log);
     if (actions.quit || final) break;
   }
   if (!a.frame_log.empty()) write_file(a.frame_log, frame_log);
-  if (a.stats) {
-    std::printf(
-        "frames %zu: frame time median %.1f ms, p95 %.1f ms; move to shown (%zu frames shown) "
-        "median %.1f ms, p95 %.1f ms; solves shown median %.1f ms; solve (last) %.1f ms; %s\n",
-        frame_ms.size() + 1, percentile(frame_ms, 0.5), percentile(frame_ms, 0.95),
-        latency_ms.size(), percentile(latency_ms, 0.5), percentile(latency_ms, 0.95),
-        percentile(solve_ms, 0.5), viewer.frame().solve_ms, window.gl_description().c_str());
-    if (const std::optional<StageTimings>& t = viewer.frame().stages)
-      std::printf(
-          "stages of the last solve (calibration solves: %d): lift %.2f ms, texture %.2f ms, "
-          "factorize %.2f ms, iterate %.2f ms, total %.2f ms\n",
-          viewer.frame().solves, t->lift, t->texture, t->factorize, t->iterate, t->total);
-    else
-      std::printf("stages: none (%s)\n", viewer.method().c_str());
-    std::printf("texture: level %d of the image, %d x %d texels\n", renderer.texture_level(),
-                renderer.texture_width(), renderer.texture_height());
-    if (const DetailPicture* d = viewer.detail_picture())
-      std::printf("detail: shown, %d x %d texels for %d x %d window pixels, rendered in %.1f ms\n",
-                  d->image.width, d->image.height, d->view.width, d->view.height, d->render_ms);
-    else
-      std::printf("detail: none shown (%s)\n",
-                  viewer.has_detail() ? "not ready or off" : "the source has none");
-    std::printf(
-        "opened: %d files or views opened and rendered off the UI thread, the last in %.1f ms; "
-        "%d frames drawn meanwhile; longest frame %.1f ms\n",
-        viewer.opened_count(), viewer.opened_ms(), frames_while_opening,
-        frame_ms.empty() ? 0.0 : *std::max_element(frame_ms.begin(), frame_ms.end()));
-    const CacheCounts& counts = renderer.cache_counts();
-    std::printf(
-        "picture: %d of %d triangles drawn as triangles (the rest as one quad); pictures drawn "
-        "whole %d, in part %d, reused %d\n",
-        renderer.moved_triangles(0), renderer.triangles(0), counts.full, counts.partial,
-        counts.reused);
-  }
+  if (a.stats) print_stats(times, viewer, window, renderer);
   return 0;
 }
 
