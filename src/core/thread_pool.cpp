@@ -85,6 +85,12 @@ ThreadPool::ThreadPool(int threads) : state_(std::make_unique<State>()) {
               std::to_string(threads));
   size_ =
       threads > 0 ? threads : std::clamp(int(std::thread::hardware_concurrency()), 1, kMaxThreads);
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+  // WebAssembly without threads (built without -pthread): std::thread cannot start one
+  // (pthread_create fails with EAGAIN), so every loop runs on the calling thread, whatever was
+  // asked; results do not depend on the number of threads.
+  size_ = 1;
+#endif
   try {
     state_->workers.reserve(size_t(size_ - 1));
     for (int t = 1; t < size_; ++t)

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "geolens/core/errors.h"
+#include "geolens/core/parse.h"
 #include "geolens/io/file_io.h"
 
 namespace geolens {
@@ -188,8 +189,9 @@ std::vector<Eigen::Vector2d> read_polygon_file(const std::string& path) {
     bool ok = words.size() == 2;
     for (int k = 0; ok && k < 2; ++k) {
       const std::string& w = words[size_t(k)];
-      const auto [end, status] = std::from_chars(w.data(), w.data() + w.size(), v[k]);
-      ok = status == std::errc() && end == w.data() + w.size() && std::isfinite(v[k]);
+      const std::optional<double> read = read_number(w);  // finite, all of w (core/parse.h)
+      ok = read.has_value();
+      if (ok) v[k] = *read;
     }
     require(ok, "read_polygon_file",
             path + ":" + std::to_string(number) + ": expected two finite numbers \"x y\", got \"" +

@@ -1,0 +1,48 @@
+# The sources of the lens engine, geolens::lens (CMakeLists.txt), on Eigen and threads alone: what
+# the native build and the WebAssembly build (web/CMakeLists.txt) compile, listed once.
+set(GEOLENS_LENS_SOURCES
+  src/core/errors.cpp
+  src/core/parallel.cpp
+  src/core/parse.cpp
+  src/core/solve_control.cpp
+  src/core/thread_pool.cpp
+  src/numerics/sparse_solver.cpp
+  src/numerics/svd2.cpp
+  src/numerics/windowed_cholesky.cpp
+  src/io/file_io.cpp
+  src/io/image.cpp
+  src/io/vector_data.cpp
+  src/geometry/conforming_mesh.cpp
+  src/geometry/distance_field.cpp
+  src/geometry/grid.cpp
+  src/geometry/mask_contour.cpp
+  src/geometry/polygon.cpp
+  src/geometry/roi.cpp
+  src/geometry/roi_raster.cpp
+  src/geometry/subdivide.cpp
+  src/warp/densify.cpp
+  src/warp/map_features.cpp
+  src/warp/warp_map.cpp
+  src/warp/warp_mesh.cpp
+  src/measure/distortion.cpp
+  src/measure/distortion_regions.cpp
+  src/lens/classic_lens.cpp
+  src/lens/calibration.cpp
+  src/lens/flatten.cpp
+  src/lens/framing.cpp
+  src/lens/focus_lens.cpp
+  src/lens/focus_pipeline.cpp
+  src/lens/geometric_lens.cpp
+  src/lens/lens_pipeline.cpp
+  src/lens/lift_pipeline.cpp
+  src/lens/lens_method.cpp
+  src/lens/lens_session.cpp
+  src/lens/lens_worker.cpp
+  src/lens/unread_options.cpp
+  src/lens/lens.cpp
+  src/lens/lens_options.cpp
+  src/lens/lift.cpp
+  src/lens/profile.cpp
+  src/lens/shared_room.cpp
+  src/lens/texture_map.cpp
+)
