@@ -273,6 +273,9 @@ ScalarVolume load_nrrd(const std::string& path) {
   std::string data_where = where;
   if (!detached_name.empty()) {
     const std::string data_path = resolved_data_path(path, detached_name);
+    std::error_code error;
+    require(std::filesystem::exists(data_path, error), f,
+            where + "data file '" + data_path + "' does not exist");
     detached = read_file(data_path, f, "NRRD data", kMaxNrrdBytes);
     data = &detached;
     data_start = 0;

@@ -205,6 +205,12 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
     EXPECT_EQ(message.rfind("load_nrrd: '" + file + "'", 0), 0u) << message;
     EXPECT_NE(message.find(what), std::string::npos) << what << "\n" << message;
   }
+  // A missing detached data file: the message names the header and the data file.
+  const std::string lost = write("lost.nhdr", small_header("data file: gone.raw\n"));
+  const std::string gone = test::refusal([&] { load_nrrd(lost); });
+  EXPECT_NE(gone.find("'" + lost + "': data file '" + path("gone.raw") + "' does not exist"),
+            std::string::npos)
+      << gone;
   // Short detached data: the message names the header and the data file.
   write("short.raw", data.substr(0, 5));
   const std::string header = write("short.nhdr", small_header("data file: short.raw\n"));
