@@ -16,16 +16,22 @@ struct EnumName {
   const char* name;
 };
 
+/// The table's names as a message lists them: "A, B or C".
+template <class Enum, std::size_t N>
+std::string enum_list(const EnumName<Enum> (&table)[N]) {
+  std::string names;
+  for (std::size_t i = 0; i < N; ++i)
+    names += std::string(i == 0 ? "" : i + 1 == N ? " or " : ", ") + table[i].name;
+  return names;
+}
+
 template <class Enum, std::size_t N>
 Enum parse_enum(const EnumName<Enum> (&table)[N], const std::string& name, const char* function,
                 const char* what) {
   for (const EnumName<Enum>& entry : table)
     if (name == entry.name) return entry.value;
-  std::string expected;
-  for (std::size_t i = 0; i < N; ++i)
-    expected += std::string(i == 0 ? "" : i + 1 == N ? " or " : ", ") + table[i].name;
   throw InvalidInput(std::string(function) + ": unknown " + what + " '" + name + "' (expected " +
-                     expected + ")");
+                     enum_list(table) + ")");
 }
 
 template <class Enum, std::size_t N>

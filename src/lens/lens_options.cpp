@@ -142,11 +142,8 @@ template <class Enum, std::size_t N, class Access>
 LensOptionField choice_field(const char* name, const char* help, const EnumName<Enum> (&names)[N],
                              Access access) {
   std::vector<std::string> choices;
-  std::string listed;  // "a, b or c"
-  for (std::size_t i = 0; i < N; ++i) {
-    choices.push_back(names[i].name);
-    listed += std::string(i == 0 ? "" : i + 1 == N ? " or " : ", ") + names[i].name;
-  }
+  for (const EnumName<Enum>& entry : names) choices.push_back(entry.name);
+  const std::string listed = enum_list(names);
   return {name,
           LensOptionField::Type::kChoice,
           help,

@@ -78,11 +78,7 @@ std::string nifti(const Header& h, const std::vector<T>& samples, bool big = fal
 
 class NiftiFile : public testing::ScratchFolderTest {
  public:
-  /// Writes `bytes` as `name` in the scratch folder and returns its path.
-  std::string write(const std::string& name, const std::string& bytes) {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
+  using ScratchFolderTest::write;  // for read_as below
 };
 
 /// A 3 x 2 x 2 uint8 header and its values, voxel (i, j, k) = 10 + i + 3 j + 6 k.

@@ -22,14 +22,7 @@
 namespace geolens {
 namespace {
 
-class NrrdFile : public testing::ScratchFolderTest {
- public:
-  /// Writes `bytes` as `name` in the scratch folder and returns its path.
-  std::string write(const std::string& name, const std::string& bytes) {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
-};
+class NrrdFile : public testing::ScratchFolderTest {};
 
 /// The samples `values` in the byte order of `big`.
 template <typename T>

@@ -20,14 +20,7 @@
 namespace geolens {
 namespace {
 
-class ObjFile : public testing::ScratchFolderTest {
- protected:
-  /// Writes `text` as `name` in the scratch folder and returns its path.
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(path(name), std::ios::binary) << text;
-    return path(name);
-  }
-};
+class ObjFile : public testing::ScratchFolderTest {};
 
 /// Sum of the triangles' vector areas (the cross products / 2): for a planar polygon, its area
 /// times its normal by the right-hand rule, whichever way it was split.

@@ -24,11 +24,6 @@ namespace {
 
 class PlyFile : public testing::ScratchFolderTest {
  protected:
-  /// Writes `bytes` as `name` in the scratch folder and returns its path.
-  std::string write(const std::string& name, const std::string& bytes) {
-    std::ofstream(path(name), std::ios::binary) << bytes;
-    return path(name);
-  }
   /// The message of the InvalidInput load_ply throws for `bytes` written as `name`, checked to
   /// start with the reader's name and to name the file.
   std::string refusal(const std::string& name, const std::string& bytes) {

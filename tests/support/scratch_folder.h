@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace geolens::testing {
@@ -25,6 +26,11 @@ class ScratchFolderTest : public ::testing::Test {
 
   /// `name` inside the folder.
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  /// Writes `bytes` as `name` in the folder and returns its path.
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(path(name), std::ios::binary) << bytes;
+    return path(name);
+  }
 
   std::filesystem::path dir_;
 };
