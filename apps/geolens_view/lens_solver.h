@@ -7,7 +7,6 @@
 
 #include <Eigen/Core>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -15,9 +14,9 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "geolens/core/solve_control.h"
 #include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_method.h"
@@ -115,13 +114,13 @@ struct DetailPicture {
   double render_ms = 0;  ///< wall-clock time of the render, milliseconds
 };
 
-/// `work` on a thread of its own, for the viewer's jobs that take long (a render, a file opened).
-/// Only the newest request waits (one submitted while another waits replaces it); a job under way
-/// cannot stop midway, and its answer is kept all the same: the caller tells by the request's
-/// number whether an answer is the one it asked for last. `work` runs on that thread only, and
-/// its exceptions must stay inside it.
+/// The viewer's jobs that take long (a render, a file opened) on the library's NewestWorker, with
+/// their answers kept: only the newest request waits (one submitted while another waits replaces
+/// it); a job under way cannot stop midway, and its answer is kept all the same: the caller tells
+/// by the request's number whether an answer is the one it asked for last. `work` runs on the
+/// worker's thread only, and its exceptions must stay inside it.
 template <class Request, class Answer>
-class NewestWorker {
+class NewestAnswers {
  public:
   /// An answer and the number of the request it answers (from 1), and how long `work` took.
   struct Done {
@@ -130,27 +129,20 @@ class NewestWorker {
     double ms = 0;  ///< wall-clock time, milliseconds
   };
 
-  explicit NewestWorker(std::function<Answer(const Request&)> work) : work_(std::move(work)) {
-    thread_ = std::thread([this] { run(); });
-  }
-  /// Finishes the job under way and joins the thread.
-  ~NewestWorker() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-  }
-  NewestWorker(const NewestWorker&) = delete;
-  NewestWorker& operator=(const NewestWorker&) = delete;
+  explicit NewestAnswers(std::function<Answer(const Request&)> work) : work_(std::move(work)) {}
 
   /// Asks for work(request); returns the request's number.
   std::uint64_t submit(Request request) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    waiting_ = std::move(request);
-    wake_.notify_all();
-    return waiting_number_ = ++submitted_;
+    return worker_.submit([this, request = std::move(request)](NewestWorker::Run& run) {
+      auto done = std::make_shared<Done>();
+      done->request = run.request();
+      const auto start = std::chrono::steady_clock::now();
+      done->answer = work_(request);
+      done->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count();
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = std::move(done);
+    });
   }
   /// The latest finished answer (null before the first).
   std::shared_ptr<const Done> latest() const {
@@ -158,50 +150,17 @@ class NewestWorker {
     return done_;
   }
   /// Blocks until no request is waiting or being worked on.
-  void wait_idle() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    idle_.wait(lock, [this] { return !busy_ && !waiting_; });
-  }
+  void wait_idle() { worker_.wait_idle(); }
 
  private:
-  void run() {
-    for (;;) {
-      auto done = std::make_shared<Done>();
-      Request request;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [this] { return stop_ || waiting_; });
-        if (stop_) return;
-        request = std::move(*waiting_);
-        waiting_.reset();
-        done->request = waiting_number_;
-        busy_ = true;
-      }
-      const auto start = std::chrono::steady_clock::now();
-      done->answer = work_(request);
-      done->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count();
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        done_ = std::move(done);
-        busy_ = false;
-      }
-      idle_.notify_all();
-    }
-  }
-
   const std::function<Answer(const Request&)> work_;
   mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::optional<Request> waiting_;  // none: no request waits
-  std::uint64_t submitted_ = 0, waiting_number_ = 0;
-  bool busy_ = false, stop_ = false;
   std::shared_ptr<const Done> done_;
-  std::thread thread_;  // started by the constructor, once every member above exists
+  NewestWorker worker_;  // last: its thread joined before the members above go
 };
 
 /// Renders warps from `file` (render(warp, file, options), source_file.h: its finer levels and
-/// its overlay, such as a map's labels) on a NewestWorker: the caller shows a picture only for
+/// its overlay, such as a map's labels) on a NewestAnswers: the caller shows a picture only for
 /// the view it asked it for.
 class DetailWorker {
  public:
@@ -226,7 +185,7 @@ class DetailWorker {
     std::shared_ptr<const DetailPicture> picture;  // the latest rendered, even if this one failed
     std::string error;
   };
-  NewestWorker<Request, Answer> worker_;
+  NewestAnswers<Request, Answer> worker_;
 };
 
 /// A source file opened and its whole frame rendered at zoom 1 (what the viewer shows of it).
@@ -242,7 +201,7 @@ struct OpenedSource {
 /// open_source and render do.
 OpenedSource open_frame(const std::string& path, const SourceFileOptions& options);
 
-/// open_frame on a NewestWorker: the caller shows an answer only for the request it asked last.
+/// open_frame on a NewestAnswers: the caller shows an answer only for the request it asked last.
 class SourceOpener {
  public:
   SourceOpener();
@@ -270,7 +229,7 @@ class SourceOpener {
     std::optional<OpenedSource> opened;
     std::string error;
   };
-  NewestWorker<Request, Opened> worker_;
+  NewestAnswers<Request, Opened> worker_;
   std::uint64_t taken_ = 0;  // the request of the answer taken last
 };
 

@@ -1,11 +1,8 @@
 #include "geolens/lens/lens_worker.h"
 
-#include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <exception>
 #include <mutex>
-#include <thread>
 #include <utility>
 
 #include "geolens/core/errors.h"
@@ -42,24 +39,20 @@ struct LensWorker::Impl {
         settle_(settle),
         progress_(std::move(progress)) {}
 
-  void run();
-  // Runs `job` on `lenses` for `request` and makes its answer (or its error) the latest;
-  // returns whether the answer is a draft.
-  bool publish(std::uint64_t request, const LensJob& job, const std::vector<Lens>& lenses);
+  // A request's work: a draft first where there is one; then, unless another request comes
+  // within settle_, the same lenses in full (stopped by a newer request).
+  void solve(NewestWorker::Run& run, const std::vector<Lens>& lenses);
+  // Runs `job` on `lenses` and makes its answer (or its error) the latest; returns whether the
+  // answer is a draft.
+  bool publish(NewestWorker::Run& run, const LensJob& job, const std::vector<Lens>& lenses);
 
   const LensJob job_;
   const LensJob draft_;  // a session's drafts (empty for another job)
   const std::chrono::milliseconds settle_;
   const std::function<void(const SolveProgress&)> progress_;
   mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::vector<Lens> waiting_;
-  std::uint64_t submitted_ = 0, waiting_request_ = 0;  // waiting_request_ 0: none waits
-  bool busy_ = false, stop_ = false;
-  bool refining_ = false;  // solving in full a request already shown as a draft
-  std::atomic<bool> cancel_{false};
   LensFrame latest_;
-  std::thread thread_;  // started once every member above exists
+  NewestWorker worker_;  // last: destroyed (its thread joined) before the members above
 };
 
 LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgress&)> progress,
@@ -67,47 +60,21 @@ LensWorker::LensWorker(LensSession session, std::function<void(const SolveProgre
   auto shared = std::make_shared<LensSession>(std::move(session));
   impl_ = std::make_unique<Impl>(session_job(shared, false), session_job(shared, true),
                                  std::move(progress), settle);
-  impl_->thread_ = std::thread([impl = impl_.get()] { impl->run(); });
 }
 
 LensWorker::LensWorker(LensJob job, std::function<void(const SolveProgress&)> progress) {
   require(bool(job), "LensWorker", "the job is empty");
   impl_ = std::make_unique<Impl>(std::move(job), nullptr, std::move(progress), kSettle);
-  impl_->thread_ = std::thread([impl = impl_.get()] { impl->run(); });
 }
 
-LensWorker::~LensWorker() {
-  Impl& w = *impl_;
-  {
-    std::lock_guard<std::mutex> lock(w.mutex_);
-    w.stop_ = true;
-    w.cancel_ = true;
-  }
-  w.wake_.notify_all();
-  w.thread_.join();
-}
+LensWorker::~LensWorker() = default;
 
 std::uint64_t LensWorker::submit(std::vector<Lens> lenses) {
-  Impl& w = *impl_;
-  std::uint64_t request;
-  {
-    std::lock_guard<std::mutex> lock(w.mutex_);
-    w.waiting_ = std::move(lenses);
-    request = w.waiting_request_ = ++w.submitted_;
-    if (w.refining_) w.cancel_ = true;  // a full frame of an older request: not worth finishing
-  }
-  w.wake_.notify_all();
-  return request;
+  return impl_->worker_.submit([impl = impl_.get(), lenses = std::move(lenses)](
+                                   NewestWorker::Run& run) { impl->solve(run, lenses); });
 }
 
-void LensWorker::cancel() {
-  Impl& w = *impl_;
-  std::lock_guard<std::mutex> lock(w.mutex_);
-  w.waiting_request_ = 0;
-  if (w.busy_) w.cancel_ = true;
-  w.idle_.notify_all();
-  w.wake_.notify_all();  // a draft waiting to settle
-}
+void LensWorker::cancel() { impl_->worker_.cancel(); }
 
 LensFrame LensWorker::latest() const {
   std::lock_guard<std::mutex> lock(impl_->mutex_);
@@ -115,25 +82,22 @@ LensFrame LensWorker::latest() const {
 }
 
 bool LensWorker::wait_for(std::uint64_t request, std::chrono::milliseconds timeout) {
-  Impl& w = *impl_;
-  std::unique_lock<std::mutex> lock(w.mutex_);
-  auto answered = [&] {
-    return w.latest_.request >= request || w.latest_.failed_request >= request;
-  };
-  w.idle_.wait_for(lock, timeout,
-                   [&] { return answered() || (!w.busy_ && w.waiting_request_ == 0); });
-  return answered();
+  return impl_->worker_.wait_for(request, timeout);
 }
 
-void LensWorker::wait_idle() {
-  Impl& w = *impl_;
-  std::unique_lock<std::mutex> lock(w.mutex_);
-  w.idle_.wait(lock, [&w] { return !w.busy_ && w.waiting_request_ == 0; });
+void LensWorker::wait_idle() { impl_->worker_.wait_idle(); }
+
+void LensWorker::Impl::solve(NewestWorker::Run& run, const std::vector<Lens>& lenses) {
+  if (draft_) {
+    if (!publish(run, draft_, lenses) || !run.quiet_for(settle_)) return;
+    run.cancel_on_newer();  // a full frame of an older request: not worth finishing
+  }
+  publish(run, job_, lenses);
 }
 
-bool LensWorker::Impl::publish(std::uint64_t request, const LensJob& job,
+bool LensWorker::Impl::publish(NewestWorker::Run& run, const LensJob& job,
                                const std::vector<Lens>& lenses) {
-  SolveControl control{&cancel_, progress_};
+  SolveControl control{&run.cancelled(), progress_};
   const auto start = std::chrono::steady_clock::now();
   std::shared_ptr<const Magnification> result;
   std::string error;
@@ -141,7 +105,7 @@ bool LensWorker::Impl::publish(std::uint64_t request, const LensJob& job,
     result = job(lenses, control);
     // A job that cannot stop midway finishes; a cancelled request's answer is dropped all the
     // same.
-    if (cancel_.load()) result = nullptr;
+    if (run.cancelled().load()) result = nullptr;
   } catch (const Cancelled&) {
     // dropped: latest() keeps the frame before
   } catch (const std::exception& e) {
@@ -149,56 +113,22 @@ bool LensWorker::Impl::publish(std::uint64_t request, const LensJob& job,
   }
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const bool draft = result && result->draft;
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (result) {
-    latest_.request = request;
-    latest_.result = std::move(result);
-    latest_.solve_ms = ms;
-    latest_.failed_request = 0;
-    latest_.error.clear();
-  } else if (!error.empty()) {
-    latest_.failed_request = request;
-    latest_.error = std::move(error);
+  const bool draft = result && result->draft, answered = result || !error.empty();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (result) {
+      latest_.request = run.request();
+      latest_.result = std::move(result);
+      latest_.solve_ms = ms;
+      latest_.failed_request = 0;
+      latest_.error.clear();
+    } else if (!error.empty()) {
+      latest_.failed_request = run.request();
+      latest_.error = std::move(error);
+    }
   }
-  idle_.notify_all();  // wait_for
+  if (answered) run.answered();
   return draft;
-}
-
-void LensWorker::Impl::run() {
-  for (;;) {
-    std::vector<Lens> lenses;
-    std::uint64_t request;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || waiting_request_ != 0; });
-      if (stop_) return;
-      lenses = std::move(waiting_);
-      request = waiting_request_;
-      waiting_request_ = 0;
-      busy_ = true;
-      cancel_ = false;
-    }
-    // A draft first where there is one; then, unless another request comes within settle_, the
-    // same lenses in full.
-    bool refine = bool(draft_);
-    const LensJob* job = refine ? &draft_ : &job_;
-    const auto interrupted = [this] { return stop_ || cancel_ || waiting_request_ != 0; };
-    for (;;) {
-      const bool draft = publish(request, *job, lenses);
-      std::unique_lock<std::mutex> lock(mutex_);
-      if (refine && draft) wake_.wait_for(lock, settle_, interrupted);
-      if (!refine || !draft || interrupted()) {
-        busy_ = refining_ = false;
-        break;
-      }
-      refine = false;
-      refining_ = true;
-      cancel_ = false;
-      job = &job_;
-    }
-    idle_.notify_all();
-  }
 }
 
 }  // namespace geolens

@@ -75,7 +75,7 @@ class LensWorker {
   bool wait_for(std::uint64_t request, std::chrono::milliseconds timeout);
 
  private:
-  struct Impl;  // the thread, the waiting request and the latest frame (lens_worker.cpp)
+  struct Impl;  // the jobs, their NewestWorker and the latest frame (lens_worker.cpp)
   std::unique_ptr<Impl> impl_;
 };
 
