@@ -51,74 +51,41 @@ Image render_image(const WarpMesh& warp, const Image& image, std::pair<int, int>
   return render(warp, MipPyramid(image), options);
 }
 
-}  // namespace
+// Python's magnify(): the image magnified by the lenses with the geometric lens, the CLI's
+// warnings as UserWarnings.
+py::array magnify_image(const py::array& image, const py::object& lenses, const py::object& size,
+                        const py::kwargs& kwargs) {
+  const Image source = to_image(image, "magnify");
+  const std::vector<Lens> list = to_lenses(lenses, "magnify");
+  const LensOptions options = lens_options(kwargs, "magnify");
+  const std::pair<int, int> output = output_size(size, {source.width, source.height}, "magnify");
+  Image magnified;
+  std::vector<std::string> warnings;
+  for (const UnreadOption& o : unread_options(options, list))
+    warnings.push_back(o.name + " is ignored: " + o.reason);
+  {
+    py::gil_scoped_release release;
+    const LensResult result = GeometricLens(source.width, source.height, options).solve(list);
+    for (std::string& w : zoom_warnings(list, result)) warnings.push_back(std::move(w));
+    magnified = render_image(result.warp, source, output, options.flatten.threads);
+  }
+  // As the CLI says them on stderr: an option the model does not read, a lens that did not
+  // get the zoom asked.
+  for (const std::string& w : warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) < 0) throw py::error_already_set();
+  return to_array(std::move(magnified), image.ndim() == 2);
+}
 
-PYBIND11_MODULE(geolens, m) {
-  m.doc() =
-      "geolens: magnify regions of an image with a geometric focus+context lens.\n\n"
-      "Images are H x W x C (or H x W) uint8 arrays; coordinates are source pixels, origin "
-      "top-left, y down. Bad input raises ValueError with the message the CLI prints, a failed "
-      "solve RuntimeError.";
-  m.attr("__version__") = GEOLENS_VERSION;
-
-  bind_lenses(m);
-  bind_results(m);
-
-  std::vector<std::string> classic_names;
-  for (const ClassicLens kind : kClassicLenses) classic_names.push_back(to_string(kind));
-  m.attr("CLASSIC_LENSES") = py::tuple(py::cast(classic_names));
-
-  m.def(
-      "magnify",
-      [](const py::array& image, const py::object& lenses, const py::object& size,
-         const py::kwargs& kwargs) {
-        const Image source = to_image(image, "magnify");
-        const std::vector<Lens> list = to_lenses(lenses, "magnify");
-        const LensOptions options = lens_options(kwargs, "magnify");
-        const std::pair<int, int> output =
-            output_size(size, {source.width, source.height}, "magnify");
-        Image magnified;
-        std::vector<std::string> warnings;
-        for (const UnreadOption& o : unread_options(options, list))
-          warnings.push_back(o.name + " is ignored: " + o.reason);
-        {
-          py::gil_scoped_release release;
-          const LensResult result = GeometricLens(source.width, source.height, options).solve(list);
-          for (std::string& w : zoom_warnings(list, result)) warnings.push_back(std::move(w));
-          magnified = render_image(result.warp, source, output, options.flatten.threads);
-        }
-        // As the CLI says them on stderr: an option the model does not read, a lens that did not
-        // get the zoom asked.
-        for (const std::string& w : warnings)
-          if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) < 0) throw py::error_already_set();
-        return to_array(std::move(magnified), image.ndim() == 2);
-      },
-      py::arg("image"), py::arg("lenses"), py::arg("size") = py::none(),
-      ("magnify(image, lenses, size=None, **options) -> ndarray\n\n"
-       "The image (H x W x C or H x W uint8) magnified by the lenses (a Lens or a list) with "
-       "the geometric lens, rendered at size (width, height; None: the image's); the same "
-       "dtype and channels out. options (the CLI's, '-' written '_'), with their defaults:\n" +
-       lens_options_doc())
-          .c_str());
-
-  m.def(
-      "render",
-      [](const WarpMap& warp, const py::array& image, const py::object& size, int threads) {
-        const Image source = to_image(image, "render");
-        const WarpMesh& mesh = warp.mesh();
-        const std::pair<int, int> output =
-            output_size(size, {mesh.screen_width, mesh.screen_height}, "render");
-        Image rendered;
-        {
-          py::gil_scoped_release release;
-          rendered = render_image(mesh, source, output, threads);
-        }
-        return to_array(std::move(rendered), image.ndim() == 2);
-      },
-      py::arg("warp"), py::arg("image"), py::arg("size") = py::none(), py::kw_only(),
-      py::arg("threads") = RenderOptions{}.threads,
-      "The image (the warp's source, H x W x C or H x W uint8) drawn through a Warp at size "
-      "(width, height; None: the warp's screen size), on threads threads (0: all cores).");
+// magnify, classic_lens and compare: lenses in, a picture, a Magnification or a report out.
+void bind_lens_calls(py::module_& m) {
+  m.def("magnify", &magnify_image, py::arg("image"), py::arg("lenses"),
+        py::arg("size") = py::none(),
+        ("magnify(image, lenses, size=None, **options) -> ndarray\n\n"
+         "The image (H x W x C or H x W uint8) magnified by the lenses (a Lens or a list) with "
+         "the geometric lens, rendered at size (width, height; None: the image's); the same "
+         "dtype and channels out. options (the CLI's, '-' written '_'), with their defaults:\n" +
+         lens_options_doc())
+            .c_str());
 
   m.def(
       "classic_lens",
@@ -161,6 +128,28 @@ PYBIND11_MODULE(geolens, m) {
        "as magnify's:\n" +
        lens_options_doc())
           .c_str());
+}
+
+// render, load_image and save_image: pictures through a warp, and image files.
+void bind_image_calls(py::module_& m) {
+  m.def(
+      "render",
+      [](const WarpMap& warp, const py::array& image, const py::object& size, int threads) {
+        const Image source = to_image(image, "render");
+        const WarpMesh& mesh = warp.mesh();
+        const std::pair<int, int> output =
+            output_size(size, {mesh.screen_width, mesh.screen_height}, "render");
+        Image rendered;
+        {
+          py::gil_scoped_release release;
+          rendered = render_image(mesh, source, output, threads);
+        }
+        return to_array(std::move(rendered), image.ndim() == 2);
+      },
+      py::arg("warp"), py::arg("image"), py::arg("size") = py::none(), py::kw_only(),
+      py::arg("threads") = RenderOptions{}.threads,
+      "The image (the warp's source, H x W x C or H x W uint8) drawn through a Warp at size "
+      "(width, height; None: the warp's screen size), on threads threads (0: all cores).");
 
   m.def(
       "load_image",
@@ -189,4 +178,25 @@ PYBIND11_MODULE(geolens, m) {
       "Writes an H x W x C or H x W uint8 array as PNG or JPEG, chosen by the extension (.png, "
       ".jpg, .jpeg; jpeg_quality in [1, 100], None: the library's default); never leaves a partial "
       "file.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(geolens, m) {
+  m.doc() =
+      "geolens: magnify regions of an image with a geometric focus+context lens.\n\n"
+      "Images are H x W x C (or H x W) uint8 arrays; coordinates are source pixels, origin "
+      "top-left, y down. Bad input raises ValueError with the message the CLI prints, a failed "
+      "solve RuntimeError.";
+  m.attr("__version__") = GEOLENS_VERSION;
+
+  bind_lenses(m);
+  bind_results(m);
+
+  std::vector<std::string> classic_names;
+  for (const ClassicLens kind : kClassicLenses) classic_names.push_back(to_string(kind));
+  m.attr("CLASSIC_LENSES") = py::tuple(py::cast(classic_names));
+
+  bind_lens_calls(m);
+  bind_image_calls(m);
 }

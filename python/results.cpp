@@ -86,7 +86,10 @@ const std::string& LensSolveResult::stats_json() const {
   return *stats_;
 }
 
-void bind_results(py::module_& m) {
+namespace {
+
+// Warp: the mesh as read-only numpy views, forward and inverse.
+void bind_warp(py::module_& m) {
   py::class_<WarpMap, std::shared_ptr<WarpMap>>(
       m, "Warp",
       "A lens's warp: a triangle mesh with, per vertex, its position in the source image and on "
@@ -133,7 +136,10 @@ void bind_results(py::module_& m) {
                std::to_string(w.mesh().screen_width) + " x " +
                std::to_string(w.mesh().screen_height) + ">";
       });
+}
 
+// Magnification, and LensResult: how the geometric lens solved.
+void bind_magnifications(py::module_& m) {
   py::class_<MagnificationResult>(m, "Magnification",
                                   "What a lens built: its warp and, per lens, its zoom.")
       .def_readonly("warp", &MagnificationResult::warp)
@@ -167,7 +173,10 @@ void bind_results(py::module_& m) {
           "stats", [](const LensSolveResult& r) { return parse_json(r.stats_json()); },
           "the stats as a dict, the keys of the CLI's --stats (its timings: the solve's and "
           "the stats' own measures); measured on first use");
+}
 
+// GeometricLens: solve, and update frame after frame.
+void bind_geometric_lens(py::module_& m) {
   py::class_<GeometricLensObject>(
       m, "GeometricLens",
       ("GeometricLens(width, height, **options): the geometric lens on a width x height source.\n"
@@ -201,6 +210,14 @@ void bind_results(py::module_& m) {
       .def_property_readonly("width", [](const GeometricLensObject& l) { return l.lens().width(); })
       .def_property_readonly("height",
                              [](const GeometricLensObject& l) { return l.lens().height(); });
+}
+
+}  // namespace
+
+void bind_results(py::module_& m) {
+  bind_warp(m);
+  bind_magnifications(m);
+  bind_geometric_lens(m);
 }
 
 }  // namespace geolens::python
