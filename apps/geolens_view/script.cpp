@@ -38,6 +38,54 @@ std::string where(const std::string& script, const ScriptEvent& event) {
 
 namespace {
 
+// Checks a `set NAME VALUE` event's name and value.
+void check_set(const std::string& name, const std::string& value) {
+  if (name == "mesh") {
+    const double m = parse_integer(value, "set mesh");
+    if (m < 4 || m > 1000) throw InvalidInput("set mesh: must be in [4, 1000], got " + value);
+  } else if (name == "method" || name == "split") {
+    if (!is_method_name(value) && !(name == "split" && value == "off"))
+      throw InvalidInput("set " + name + ": unknown method '" + value + "' (" + method_list() +
+                         (name == "split" ? ", or off)" : ")"));
+  } else if (name == "model") {
+    parse_lens_model(value);
+  } else if (name == "wireframe" || name == "heatmap" || name == "outlines" || name == "panel" ||
+             name == "detail") {
+    if (value != "on" && value != "off")
+      throw InvalidInput("expected on or off, got '" + value + "'");
+  } else if (name == "heat_max") {
+    if (parse_number(value, "set heat_max") < 0)
+      throw InvalidInput("set heat_max: must be >= 0 (0: the largest shown), got " + value);
+  } else {
+    throw InvalidInput("set: unknown option '" + name +
+                       "' (mesh, method, split, model, wireframe, heatmap, heat_max, outlines, "
+                       "panel, detail)");
+  }
+}
+
+// Checks a `press` or `release` event's button and modifiers.
+void check_buttons(const std::vector<std::string>& a) {
+  if (a[0] != "left" && a[0] != "right")
+    throw InvalidInput("expected the button left or right, got '" + a[0] + "'");
+  for (size_t i = 1; i < a.size(); ++i)
+    if (a[i] != "ctrl" && a[i] != "shift" && a[i] != "double")
+      throw InvalidInput("expected the modifier ctrl, shift or double, got '" + a[i] + "'");
+}
+
+// A `set NAME VALUE` event (checked by check_set) applied to the viewer.
+void apply_set(const std::string& name, const std::string& value, Viewer& viewer) {
+  if (name == "mesh") viewer.set_mesh(int(parse_number(value, "set")));
+  if (name == "method") viewer.set_method(value);
+  if (name == "split") viewer.set_split(value == "off" ? "" : value);
+  if (name == "model") viewer.set_model(parse_lens_model(value));
+  if (name == "wireframe") viewer.wireframe = value == "on";
+  if (name == "heatmap") viewer.heatmap = value == "on";
+  if (name == "heat_max") viewer.set_heat_max(parse_number(value, "set"));
+  if (name == "outlines") viewer.outlines = value == "on";
+  if (name == "panel") viewer.panel = value == "on";
+  if (name == "detail") viewer.detail = value == "on";
+}
+
 // Checks one event's arguments; throws InvalidInput with what is wrong (the caller adds where).
 void check_event(const ScriptEvent& e, const std::string& input_image) {
   const auto& a = e.args;
@@ -52,9 +100,6 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
   };
   auto numbers = [&](size_t from, size_t to) {
     for (size_t i = from; i < to; ++i) parse_number(a[i], e.command + " argument " + a[i]);
-  };
-  auto on_off = [&](const std::string& v) {
-    if (v != "on" && v != "off") throw InvalidInput("expected on or off, got '" + v + "'");
   };
   const std::string& c = e.command;
   if (c == "move") {
@@ -78,37 +123,13 @@ void check_event(const ScriptEvent& e, const std::string& input_image) {
     count(1, 1, "a lens spec (circle:X,Y,R[:ZOOM] or polygon:FILE[:ZOOM])");
   } else if (c == "set") {
     count(2, 2, "NAME VALUE");
-    const std::string& name = a[0];
-    if (name == "mesh") {
-      const double m = parse_integer(a[1], "set mesh");
-      if (m < 4 || m > 1000) throw InvalidInput("set mesh: must be in [4, 1000], got " + a[1]);
-    } else if (name == "method" || name == "split") {
-      if (!is_method_name(a[1]) && !(name == "split" && a[1] == "off"))
-        throw InvalidInput("set " + name + ": unknown method '" + a[1] + "' (" + method_list() +
-                           (name == "split" ? ", or off)" : ")"));
-    } else if (name == "model") {
-      parse_lens_model(a[1]);
-    } else if (name == "wireframe" || name == "heatmap" || name == "outlines" || name == "panel" ||
-               name == "detail") {
-      on_off(a[1]);
-    } else if (name == "heat_max") {
-      if (parse_number(a[1], "set heat_max") < 0)
-        throw InvalidInput("set heat_max: must be >= 0 (0: the largest shown), got " + a[1]);
-    } else {
-      throw InvalidInput("set: unknown option '" + name +
-                         "' (mesh, method, split, model, wireframe, heatmap, heat_max, outlines, "
-                         "panel, detail)");
-    }
+    check_set(a[0], a[1]);
   } else if (c == "mouse") {
     count(2, 2, "X Y (window pixels)");
     numbers(0, 2);
   } else if (c == "press" || c == "release") {
     count(1, 4, "left|right [ctrl] [shift] [double]");
-    if (a[0] != "left" && a[0] != "right")
-      throw InvalidInput("expected the button left or right, got '" + a[0] + "'");
-    for (size_t i = 1; i < a.size(); ++i)
-      if (a[i] != "ctrl" && a[i] != "shift" && a[i] != "double")
-        throw InvalidInput("expected the modifier ctrl, shift or double, got '" + a[i] + "'");
+    check_buttons(a);
   } else if (c == "polygon") {
     if (a.size() < 6 || a.size() % 2 != 0)
       throw InvalidInput("'polygon' takes X Y pairs of at least 3 vertices (window pixels), got " +
@@ -244,17 +265,7 @@ void ScriptRunner::apply(const ScriptEvent& e, Viewer& viewer, ScriptActions& ac
   } else if (c == "add") {
     viewer.add_lenses(a[0]);
   } else if (c == "set") {
-    const std::string& name = a[0];
-    if (name == "mesh") viewer.set_mesh(int(num(1)));
-    if (name == "method") viewer.set_method(a[1]);
-    if (name == "split") viewer.set_split(a[1] == "off" ? "" : a[1]);
-    if (name == "model") viewer.set_model(parse_lens_model(a[1]));
-    if (name == "wireframe") viewer.wireframe = a[1] == "on";
-    if (name == "heatmap") viewer.heatmap = a[1] == "on";
-    if (name == "heat_max") viewer.set_heat_max(num(1));
-    if (name == "outlines") viewer.outlines = a[1] == "on";
-    if (name == "panel") viewer.panel = a[1] == "on";
-    if (name == "detail") viewer.detail = a[1] == "on";
+    apply_set(a[0], a[1], viewer);
   } else if (c == "mouse") {
     viewer.mouse_move({num(0), num(1)});
   } else if (c == "press" || c == "release") {
