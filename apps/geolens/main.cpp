@@ -36,17 +36,14 @@ struct MagnifyArgs {
   cli::LensArgs lens;
 };
 
-int run_magnify(const MagnifyArgs& a) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  // Validate everything before any work.
+// The run's inputs and outputs, each checked: an output naming an input, or written twice, is
+// refused before any work (RunFiles::check).
+void add_magnify_files(RunFiles& files, const MagnifyArgs& a) {
   require(is_writable_image_path(a.output), "--output",
           "'" + a.output + "' must end in .png, .jpg or .jpeg");
   if (!a.before_after.empty())
     require(is_writable_image_path(a.before_after), "--before-after",
             "'" + a.before_after + "' must end in .png, .jpg or .jpeg");
-  RunFiles files;
-  const cli::RemoveOnInterrupt interrupt(files);
   cli::add_source_inputs(files, a.input, a.source);
   if (!a.overlay.empty()) files.add_input("the --overlay file", a.overlay);
   for (const LensSpecFile& f : cli::lens_files(a.lens))
@@ -58,18 +55,61 @@ int run_magnify(const MagnifyArgs& a) {
     files.add_output("--export-mesh", a.export_mesh + "_flat.obj");
   }
   if (!a.stats.empty()) files.add_output("--stats", a.stats);
+}
+
+// The warnings of a warp's measured distortion: folded or collapsed triangles.
+void warn_about_distortion(const DistortionSummary& distortion) {
+  if (distortion.flipped > 0) {
+    std::cerr << "geolens: warning: " << distortion.flipped
+              << " triangles are flipped (folded); try --texture cotan, a lower zoom or a finer "
+                 "--mesh\n";
+  }
+  if (distortion.degenerate()) {
+    std::cerr << "geolens: warning: some triangles collapsed (conformal maximum "
+              << distortion.conformal_max
+              << "): the distortion figures are not meaningful; try --model focus, a lower zoom "
+                 "or a finer --mesh\n";
+  }
+}
+
+// The pictures and meshes of the run to temporary files, renamed into place by files.commit().
+void stage_images(RunFiles& files, const MagnifyArgs& a, const Image& output, const Image& before,
+                  const LensResult& result) {
+  save_image(files.staged(a.output), output);
+  if (!a.before_after.empty())
+    save_image(files.staged(a.before_after), side_by_side(before, output));
+  if (!a.export_mesh.empty()) {
+    write_obj(files.staged(a.export_mesh + "_3d.obj"), result.lifted, result.mesh.F);
+    write_obj(files.staged(a.export_mesh + "_flat.obj"), result.flat, result.mesh.F);
+  }
+}
+
+// Milliseconds since the last call (or the construction).
+class Lap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - mark_).count();
+    mark_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point mark_ = std::chrono::steady_clock::now();
+};
+
+int run_magnify(const MagnifyArgs& a) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  // Validate everything before any work.
+  RunFiles files;
+  const cli::RemoveOnInterrupt interrupt(files);
+  add_magnify_files(files, a);
   files.check();
   const LensOptions options = cli::parse_options(a.lens);
   // Each part of the run timed from the end of the one before (RunTimings, eval/run_stats.h).
   RunTimings timings;
-  auto mark = Clock::now();
-  auto lap = [&] {
-    const auto now = Clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - mark).count();
-    mark = now;
-    return ms;
-  };
-  lap();
+  Lap lap;
   std::optional<VectorData> overlay =
       a.overlay.empty() ? std::nullopt : std::optional(read_geojson(a.overlay));
   const SourceFile source = cli::open_input(a.input, a.source);
@@ -87,17 +127,7 @@ int run_magnify(const MagnifyArgs& a) {
   lap();
   cli::warn_about_zooms(lenses, result);
   const DistortionSummary distortion = summarize(measure_triangles(result.warp));
-  if (distortion.flipped > 0) {
-    std::cerr << "geolens: warning: " << distortion.flipped
-              << " triangles are flipped (folded); try --texture cotan, a lower zoom or a finer "
-                 "--mesh\n";
-  }
-  if (distortion.degenerate()) {
-    std::cerr << "geolens: warning: some triangles collapsed (conformal maximum "
-              << distortion.conformal_max
-              << "): the distortion figures are not meaningful; try --model focus, a lower zoom "
-                 "or a finer --mesh\n";
-  }
+  warn_about_distortion(distortion);
   timings.measure = lap();
 
   RenderOptions render_options;
@@ -132,13 +162,7 @@ int run_magnify(const MagnifyArgs& a) {
   timings.render = lap();
 
   // Every output to a temporary file; all renamed into place once every one is written.
-  save_image(files.staged(a.output), output);
-  if (!a.before_after.empty())
-    save_image(files.staged(a.before_after), side_by_side(before, output));
-  if (!a.export_mesh.empty()) {
-    write_obj(files.staged(a.export_mesh + "_3d.obj"), result.lifted, result.mesh.F);
-    write_obj(files.staged(a.export_mesh + "_flat.obj"), result.flat, result.mesh.F);
-  }
+  stage_images(files, a, output, before, result);
   timings.save = lap();
   if (!a.stats.empty()) {
     timings.total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
