@@ -21,6 +21,8 @@ namespace geolens {
 
 namespace {
 
+constexpr const char* kFn = "load_nrrd";
+
 /// A NRRD file, or its detached data, holds at most the samples read and a header.
 constexpr size_t kMaxNrrdBytes = kMaxVolumeBytes + (size_t(1) << 20);
 
@@ -161,6 +163,189 @@ Header parse_header(const std::string& text, const std::string& where) {
   return header;
 }
 
+/// The header's fields as load_nrrd reads them, `where` naming the file in messages.
+struct HeaderFields {
+  const Header& header;
+  const std::string& where;
+
+  // The value of field `name` (empty if there is none); refused if `required` and missing.
+  std::string field(const std::string& name, bool required) const {
+    require(!required || header.fields.count(name) > 0, kFn,
+            where + "the header has no '" + name + "' field");
+    return header.value(name);
+  }
+  // The message that field `name` has `what` wrong with it, naming its line. Read only: a
+  // message built before its field's check (arguments are evaluated first) must not add the
+  // field it is about.
+  std::string bad(const std::string& name, const std::string& what) const {
+    const auto it = header.fields.find(name);
+    if (it == header.fields.end()) return where + "the header has no '" + name + "' field";
+    return where + "header line " + std::to_string(it->second.second) + " (" + name + ": " +
+           it->second.first.substr(0, 60) + "): " + what;
+  }
+};
+
+/// The voxel type the "type" field names.
+VoxelType voxel_type(const HeaderFields& h) {
+  VoxelType type = VoxelType::uint8;
+  require(type_named(h.field("type", true), type), kFn, h.bad("type", "unknown type"));
+  return type;
+}
+
+/// Sets the volume's nx, ny and nz from the "sizes" field, refusing a size out of range or a
+/// volume of no or too many voxels.
+void read_sizes(const HeaderFields& h, ScalarVolume& volume) {
+  std::istringstream in(h.field("sizes", true));
+  long long sizes[3];
+  std::string rest;
+  require(bool(in >> sizes[0] >> sizes[1] >> sizes[2]) && !(in >> rest), kFn,
+          h.bad("sizes", "expected three sizes"));
+  for (const long long s : sizes)
+    require(s >= 0 && s <= (1 << 16), kFn, h.bad("sizes", "a size outside [0, 65536]"));
+  volume.nx = int(sizes[0]);
+  volume.ny = int(sizes[1]);
+  volume.nz = int(sizes[2]);
+  require(volume.nx > 0 && volume.ny > 0 && volume.nz > 0, kFn,
+          h.bad("sizes", "a volume of zero size"));
+  require(uint64_t(sizes[0]) * uint64_t(sizes[1]) * uint64_t(sizes[2]) <= kMaxVoxels, kFn,
+          h.bad("sizes", "more than the " + std::to_string(kMaxVoxels) + " voxels read (2^28)"));
+}
+
+/// Whether samples of several bytes are swapped to the machine's order (the "endian" field).
+bool byte_swap(const HeaderFields& h) {
+  const std::string endian = h.field("endian", true);
+  require(endian == "little" || endian == "big", kFn, h.bad("endian", "not little or big"));
+  return (endian == "big") != (std::endian::native == std::endian::big);
+}
+
+/// Sets the volume's spacing from the "spacings" field ("nan" for 1).
+void read_spacings(const HeaderFields& h, const std::string& spacings, ScalarVolume& volume) {
+  std::istringstream in(spacings);
+  for (int k = 0; k < 3; ++k) {
+    std::string word;
+    require(bool(in >> word), kFn, h.bad("spacings", "expected three spacings"));
+    const double s = word == "nan" || word == "NaN" ? 1 : std::strtod(word.c_str(), nullptr);
+    require(std::isfinite(s) && s > 0, kFn, h.bad("spacings", "a spacing that is not positive"));
+    volume.spacing[k] = s;
+  }
+}
+
+/// Sets the volume's spacing from the lengths of the "space directions" field's vectors, an
+/// axis "none" keeping its spacing.
+void read_directions(const HeaderFields& h, const std::string& directions, ScalarVolume& volume) {
+  // "(a,b,c) (d,e,f) (g,h,i)" or "none" for an axis.
+  size_t p = 0;
+  for (int k = 0; k < 3; ++k) {
+    while (p < directions.size() && directions[p] == ' ') ++p;
+    if (directions.compare(p, 4, "none") == 0) {
+      p += 4;
+      continue;
+    }
+    const size_t close = directions.find(')', p);
+    require(p < directions.size() && directions[p] == '(' && close != std::string::npos, kFn,
+            h.bad("space directions", "expected three (x,y,z) vectors"));
+    std::string inner = directions.substr(p + 1, close - p - 1);
+    for (char& c : inner)
+      if (c == ',') c = ' ';
+    std::istringstream in(inner);
+    double length2 = 0, c = 0;
+    while (in >> c) length2 += c * c;
+    const double s = std::sqrt(length2);
+    require(std::isfinite(s) && s > 0, kFn, h.bad("space directions", "a zero direction"));
+    volume.spacing[k] = s;
+    p = close + 1;
+  }
+}
+
+/// The bytes the samples are read from: the header's text (attached data) or a detached file's.
+struct Data {
+  bool is_detached = false;
+  std::string detached;  ///< the detached file's bytes
+  size_t start = 0;      ///< where the data starts in them
+  std::string where;     ///< names the file holding the data, for messages
+
+  const std::string& bytes(const std::string& text) const { return is_detached ? detached : text; }
+};
+
+/// The data: attached after the header's blank line, or in the detached file it names (read).
+Data find_data(const Header& header, const std::string& path, const std::string& where) {
+  const std::string detached_name = header.data_file();
+  Data data;
+  data.start = header.data_start;
+  data.where = where;
+  if (!detached_name.empty()) {
+    const std::string data_path = resolved_data_path(path, detached_name);
+    std::error_code error;
+    require(std::filesystem::exists(data_path, error), kFn,
+            where + "data file '" + data_path + "' does not exist");
+    data.detached = read_file(data_path, kFn, "NRRD data", kMaxNrrdBytes);
+    data.is_detached = true;
+    data.start = 0;
+    data.where = where + "data file '" + data_path + "': ";
+  } else {
+    require(header.attached, kFn,
+            where + "no data: the header has no blank line and no 'data file'");
+  }
+  return data;
+}
+
+/// Moves `start` past the lines of `bytes` the "line skip" field skips.
+void skip_lines(const HeaderFields& h, const std::string& bytes, size_t& start) {
+  const std::string line_skip = h.field("line skip", false);
+  if (line_skip.empty()) return;
+  const std::optional<int> n = read_integer(line_skip);
+  require(n && *n >= 0, kFn, h.bad("line skip", "not a line count"));
+  for (int i = 0; i < *n && start < bytes.size(); ++i) {
+    const size_t end = bytes.find('\n', start);
+    start = end == std::string::npos ? bytes.size() : end + 1;
+  }
+}
+
+/// The "byte skip" field's value: 0 if there is none, else a whole number (-1: the samples end
+/// the file), not checked further.
+long long byte_skip(const HeaderFields& h) {
+  const std::string byte_skip = h.field("byte skip", false);
+  char* skip_end = nullptr;
+  const long long skip = byte_skip.empty() ? 0 : std::strtoll(byte_skip.c_str(), &skip_end, 10);
+  require(byte_skip.empty() || skip_end == byte_skip.c_str() + byte_skip.size(), kFn,
+          h.bad("byte skip", "not -1 or a byte count"));
+  return skip;
+}
+
+/// The raw samples, `expected` bytes after the byte skip `skip`, checked to be there; `size_text`
+/// says what the header claims.
+const unsigned char* raw_samples(const HeaderFields& h, const std::string& bytes, const Data& data,
+                                 long long skip, size_t expected, const std::string& size_text) {
+  size_t start = data.start;
+  if (skip == -1) {
+    require(bytes.size() >= expected, kFn,
+            data.where + "the header claims " + size_text + ", the file holds " +
+                std::to_string(bytes.size()) + " bytes");
+    start = bytes.size() - expected;
+  } else {
+    require(skip >= 0, kFn, h.bad("byte skip", "not -1 or a byte count"));
+    start += size_t(skip);
+  }
+  const size_t held = bytes.size() > start ? bytes.size() - start : 0;
+  require(held >= expected, kFn,
+          data.where + "the header claims " + size_text + ", the data holds " +
+              std::to_string(held) + " bytes");
+  return reinterpret_cast<const unsigned char*>(bytes.data()) + start;
+}
+
+/// The gzip data inflated, checked to be the `expected` bytes `size_text` claims.
+std::string gzip_samples(const std::string& bytes, const Data& data, size_t expected,
+                         const std::string& size_text) {
+  const size_t held = bytes.size() > data.start ? bytes.size() - data.start : 0;
+  std::string inflated =
+      inflate_all(reinterpret_cast<const unsigned char*>(bytes.data()) + data.start, held, expected,
+                  data.where);
+  require(inflated.size() == expected, kFn,
+          data.where + "the header claims " + size_text + ", the gzip data holds " +
+              std::to_string(inflated.size()) + " bytes");
+  return inflated;
+}
+
 }  // namespace
 
 std::string nrrd_data_path(const std::string& path) {
@@ -180,121 +365,32 @@ std::string nrrd_data_path(const std::string& path) {
 }
 
 ScalarVolume load_nrrd(const std::string& path) {
-  const char* f = "load_nrrd";
   const std::string where = "'" + path + "': ";
-  const std::string text = read_file(path, f, "NRRD", kMaxNrrdBytes);
-  Header header = parse_header(text, where);
-  auto& fields = header.fields;  // name -> value, line
-  auto field = [&](const std::string& name, bool required) {
-    require(!required || fields.count(name) > 0, f,
-            where + "the header has no '" + name + "' field");
-    return header.value(name);
-  };
-  // Read only: a message built before its field's check (arguments are evaluated first) must
-  // not add the field it is about.
-  auto bad = [&](const std::string& name, const std::string& what) {
-    const auto it = fields.find(name);
-    if (it == fields.end()) return where + "the header has no '" + name + "' field";
-    return where + "header line " + std::to_string(it->second.second) + " (" + name + ": " +
-           it->second.first.substr(0, 60) + "): " + what;
-  };
-
-  VoxelType type = VoxelType::uint8;
-  require(type_named(field("type", true), type), f, bad("type", "unknown type"));
-  require(field("dimension", true) == "3", f, bad("dimension", "only 3D volumes are read"));
+  const std::string text = read_file(path, kFn, "NRRD", kMaxNrrdBytes);
+  const Header header = parse_header(text, where);
+  const HeaderFields h{header, where};
+  const VoxelType type = voxel_type(h);
+  require(h.field("dimension", true) == "3", kFn, h.bad("dimension", "only 3D volumes are read"));
   ScalarVolume volume;
-  {
-    std::istringstream in(field("sizes", true));
-    long long sizes[3];
-    std::string rest;
-    require(bool(in >> sizes[0] >> sizes[1] >> sizes[2]) && !(in >> rest), f,
-            bad("sizes", "expected three sizes"));
-    for (const long long s : sizes)
-      require(s >= 0 && s <= (1 << 16), f, bad("sizes", "a size outside [0, 65536]"));
-    volume.nx = int(sizes[0]);
-    volume.ny = int(sizes[1]);
-    volume.nz = int(sizes[2]);
-    require(volume.nx > 0 && volume.ny > 0 && volume.nz > 0, f,
-            bad("sizes", "a volume of zero size"));
-    require(uint64_t(sizes[0]) * uint64_t(sizes[1]) * uint64_t(sizes[2]) <= kMaxVoxels, f,
-            bad("sizes", "more than the " + std::to_string(kMaxVoxels) + " voxels read (2^28)"));
-  }
-  std::string encoding = field("encoding", true);
-  require(encoding == "raw" || encoding == "gzip" || encoding == "gz", f,
-          bad("encoding", "only raw and gzip are read"));
+  read_sizes(h, volume);
+  const std::string encoding = h.field("encoding", true);
+  require(encoding == "raw" || encoding == "gzip" || encoding == "gz", kFn,
+          h.bad("encoding", "only raw and gzip are read"));
   const int bytes = detail::voxel_bytes(type);
-  bool swap = false;
-  if (bytes > 1) {
-    const std::string endian = field("endian", true);
-    require(endian == "little" || endian == "big", f, bad("endian", "not little or big"));
-    swap = (endian == "big") != (std::endian::native == std::endian::big);
-  }
-  std::string spacings = field("spacings", false);
-  std::string directions = field("space directions", false);
-  if (!spacings.empty()) {
-    std::istringstream in(spacings);
-    for (int k = 0; k < 3; ++k) {
-      std::string word;
-      require(bool(in >> word), f, bad("spacings", "expected three spacings"));
-      const double s = word == "nan" || word == "NaN" ? 1 : std::strtod(word.c_str(), nullptr);
-      require(std::isfinite(s) && s > 0, f, bad("spacings", "a spacing that is not positive"));
-      volume.spacing[k] = s;
-    }
-  } else if (!directions.empty()) {
-    // "(a,b,c) (d,e,f) (g,h,i)" or "none" for an axis.
-    size_t p = 0;
-    for (int k = 0; k < 3; ++k) {
-      while (p < directions.size() && directions[p] == ' ') ++p;
-      if (directions.compare(p, 4, "none") == 0) {
-        p += 4;
-        continue;
-      }
-      const size_t close = directions.find(')', p);
-      require(p < directions.size() && directions[p] == '(' && close != std::string::npos, f,
-              bad("space directions", "expected three (x,y,z) vectors"));
-      std::string inner = directions.substr(p + 1, close - p - 1);
-      for (char& c : inner)
-        if (c == ',') c = ' ';
-      std::istringstream in(inner);
-      double length2 = 0, c = 0;
-      while (in >> c) length2 += c * c;
-      const double s = std::sqrt(length2);
-      require(std::isfinite(s) && s > 0, f, bad("space directions", "a zero direction"));
-      volume.spacing[k] = s;
-      p = close + 1;
-    }
-  }
+  const bool swap = bytes > 1 && byte_swap(h);
+  const std::string spacings = h.field("spacings", false);
+  const std::string directions = h.field("space directions", false);
+  if (!spacings.empty())
+    read_spacings(h, spacings, volume);
+  else if (!directions.empty())
+    read_directions(h, directions, volume);
 
-  // The data: attached after the blank line, or in a detached file.
-  const std::string detached_name = header.data_file();
-  std::string detached;
-  const std::string* data = &text;
-  size_t data_start = header.data_start;
-  std::string data_where = where;
-  if (!detached_name.empty()) {
-    const std::string data_path = resolved_data_path(path, detached_name);
-    std::error_code error;
-    require(std::filesystem::exists(data_path, error), f,
-            where + "data file '" + data_path + "' does not exist");
-    detached = read_file(data_path, f, "NRRD data", kMaxNrrdBytes);
-    data = &detached;
-    data_start = 0;
-    data_where = where + "data file '" + data_path + "': ";
-  } else {
-    require(header.attached, f, where + "no data: the header has no blank line and no 'data file'");
-  }
-  const std::string line_skip = field("line skip", false);
-  if (!line_skip.empty()) {
-    const std::optional<int> n = read_integer(line_skip);
-    require(n && *n >= 0, f, bad("line skip", "not a line count"));
-    for (int i = 0; i < *n && data_start < data->size(); ++i) {
-      const size_t end = data->find('\n', data_start);
-      data_start = end == std::string::npos ? data->size() : end + 1;
-    }
-  }
+  Data data = find_data(header, path, where);
+  const std::string& data_bytes = data.bytes(text);
+  skip_lines(h, data_bytes, data.start);
   const size_t count = size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz);
   const size_t expected = count * size_t(bytes);
-  require(expected <= kMaxVolumeBytes, f,
+  require(expected <= kMaxVolumeBytes, kFn,
           where + "the header claims " + std::to_string(expected) +
               " bytes of samples, more than the " + std::to_string(kMaxVolumeBytes) +
               " read (2^30)");
@@ -302,40 +398,18 @@ ScalarVolume load_nrrd(const std::string& path) {
                                 " x " + std::to_string(volume.nz) + " " +
                                 detail::voxel_type_name(type) + " voxels (" +
                                 std::to_string(expected) + " bytes)";
-  const std::string byte_skip = field("byte skip", false);
-  char* skip_end = nullptr;
-  const long long skip = byte_skip.empty() ? 0 : std::strtoll(byte_skip.c_str(), &skip_end, 10);
-  require(byte_skip.empty() || skip_end == byte_skip.c_str() + byte_skip.size(), f,
-          bad("byte skip", "not -1 or a byte count"));
+  const long long skip = byte_skip(h);
   std::string inflated;
   const unsigned char* samples = nullptr;
   if (encoding == "raw") {
-    if (skip == -1) {
-      require(data->size() >= expected, f,
-              data_where + "the header claims " + size_text + ", the file holds " +
-                  std::to_string(data->size()) + " bytes");
-      data_start = data->size() - expected;
-    } else {
-      require(skip >= 0, f, bad("byte skip", "not -1 or a byte count"));
-      data_start += size_t(skip);
-    }
-    const size_t held = data->size() > data_start ? data->size() - data_start : 0;
-    require(held >= expected, f,
-            data_where + "the header claims " + size_text + ", the data holds " +
-                std::to_string(held) + " bytes");
-    samples = reinterpret_cast<const unsigned char*>(data->data()) + data_start;
+    samples = raw_samples(h, data_bytes, data, skip, expected, size_text);
   } else {
-    const size_t held = data->size() > data_start ? data->size() - data_start : 0;
-    inflated = inflate_all(reinterpret_cast<const unsigned char*>(data->data()) + data_start, held,
-                           expected, data_where);
-    require(inflated.size() == expected, f,
-            data_where + "the header claims " + size_text + ", the gzip data holds " +
-                std::to_string(inflated.size()) + " bytes");
+    inflated = gzip_samples(data_bytes, data, expected, size_text);
     samples = reinterpret_cast<const unsigned char*>(inflated.data());
   }
   volume.values.resize(count);
   detail::decode_voxels(samples, count, type, swap, volume.values.data());
-  check_volume(volume, f, path);
+  check_volume(volume, kFn, path);
   return volume;
 }
 
