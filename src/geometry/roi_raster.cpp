@@ -145,6 +145,161 @@ bool seen_whole_from(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d
   return true;
 }
 
+/// An 8-connected blob of a mask's pixels.
+struct Blob {
+  int x0, y0, x1, y1;  // pixel bounding box, inclusive
+  int pixels = 0;
+};
+
+/// A mask's blobs and the blob of each pixel (its index, -1 for none), row-major.
+struct Blobs {
+  std::vector<Blob> blobs;
+  std::vector<int> label;
+};
+
+/// Labels `id` the blob of pixel (x, y) of `mask` (not yet labelled) by a flood fill over the
+/// 8-neighbours; returns the blob. `stack`: scratch.
+Blob flood_blob(const Image& mask, int x, int y, int id, std::vector<int>& label,
+                std::vector<int>& stack) {
+  const int w = mask.width, h = mask.height;
+  Blob blob{x, y, x, y, 0};
+  label[size_t(y) * w + x] = id;
+  stack.assign(1, y * w + x);
+  while (!stack.empty()) {
+    const int px = stack.back() % w, py = stack.back() / w;
+    stack.pop_back();
+    ++blob.pixels;
+    blob.x0 = std::min(blob.x0, px);
+    blob.x1 = std::max(blob.x1, px);
+    blob.y0 = std::min(blob.y0, py);
+    blob.y1 = std::max(blob.y1, py);
+    for (int qy = std::max(py - 1, 0); qy <= std::min(py + 1, h - 1); ++qy) {
+      for (int qx = std::max(px - 1, 0); qx <= std::min(px + 1, w - 1); ++qx) {
+        if (!mask.at(qx, qy)[0] || label[size_t(qy) * w + qx] >= 0) continue;
+        label[size_t(qy) * w + qx] = id;
+        stack.push_back(qy * w + qx);
+      }
+    }
+  }
+  return blob;
+}
+
+/// The 8-connected blobs of the mask's non-zero first-channel pixels, labelled in raster order.
+Blobs label_blobs(const Image& mask) {
+  const int w = mask.width, h = mask.height;
+  Blobs found;
+  found.label.assign(size_t(w) * h, -1);
+  std::vector<int> stack;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!mask.at(x, y)[0] || found.label[size_t(y) * w + x] >= 0) continue;
+      found.blobs.push_back(flood_blob(mask, x, y, int(found.blobs.size()), found.label, stack));
+    }
+  }
+  return found;
+}
+
+/// Blob `id`'s nodes, 1 inside: one per pixel centre, the blob's box padded by one outside pixel
+/// on every side (width x height nodes, row-major); `w`: the mask's width.
+std::vector<uint8_t> blob_nodes(const Blob& b, int id, const std::vector<int>& label, int w,
+                                int width, int height) {
+  std::vector<uint8_t> inside(size_t(width) * height, 0);
+  for (int y = b.y0; y <= b.y1; ++y) {
+    for (int x = b.x0; x <= b.x1; ++x) {
+      inside[size_t(y - b.y0 + 1) * width + (x - b.x0 + 1)] =
+          uint8_t(label[size_t(y) * w + x] == id);
+    }
+  }
+  return inside;
+}
+
+/// The blob's pixel box as a region's bounds: from its first pixel's corner to past its last.
+Eigen::AlignedBox2d pixel_box(const Blob& b) {
+  return Eigen::AlignedBox2d(Eigen::Vector2d(b.x0, b.y0), Eigen::Vector2d(b.x1 + 1, b.y1 + 1));
+}
+
+/// The shape of blob `b` as the polygon of its smooth outline (so a lens's mesh follows its
+/// boundary, as a polygon's), named a mask and with no anchors; null if the blob has no such
+/// outline or its peak does not see it whole. `inside`: its nodes, (i, j) at origin + (i, j).
+std::shared_ptr<FieldShape> outline_shape(const Blob& b, const std::vector<uint8_t>& inside,
+                                          int width, int height, const Eigen::Vector2d& origin) {
+  const std::optional<std::vector<Eigen::Vector2d>> outline =
+      mask_outline(inside, width, height, origin);
+  if (!outline) return nullptr;
+  const std::shared_ptr<FieldShape> shape = polygon_shape(*outline);
+  if (!seen_whole_from(shape->peak_point, *outline)) return nullptr;
+  shape->name = "mask";
+  shape->anchor_points.clear();
+  shape->box.extend(pixel_box(b));
+  return shape;
+}
+
+/// The pixels of blob `id` with a 4-neighbour outside it, as their corners (x, y); `w` x `h`: the
+/// mask's size.
+std::shared_ptr<std::vector<Eigen::Vector2d>> boundary_pixels(const Blob& b, int id,
+                                                              const std::vector<int>& label, int w,
+                                                              int h) {
+  auto in_blob = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && label[size_t(y) * w + x] == id;
+  };
+  auto edge = std::make_shared<std::vector<Eigen::Vector2d>>();  // pixel corners (x, y)
+  for (int y = b.y0; y <= b.y1; ++y) {
+    for (int x = b.x0; x <= b.x1; ++x) {
+      if (in_blob(x, y) &&
+          !(in_blob(x - 1, y) && in_blob(x + 1, y) && in_blob(x, y - 1) && in_blob(x, y + 1)))
+        edge->emplace_back(x, y);
+    }
+  }
+  return edge;
+}
+
+/// The shape of blob `id` as its raster: depth and thickness from the nodes' distance fields
+/// (`inside`, width x height nodes at origin + (i, j)), the distance outside to its boundary
+/// pixels; `w` x `h`: the mask's size.
+std::shared_ptr<FieldShape> raster_shape(const Blob& b, int id, const std::vector<int>& label,
+                                         int w, int h, const std::vector<uint8_t>& inside,
+                                         int width, int height, const Eigen::Vector2d& origin) {
+  auto raster =
+      std::make_shared<const DepthRaster>(depth_raster(inside, width, height, origin, 1.0));
+
+  auto shape = std::make_shared<FieldShape>();
+  shape->name = "mask";
+  shape->box = pixel_box(b);
+  shape->depth_at = [raster](const Eigen::Vector2d& p) {
+    return depth_from_distances(raster->axis_distance(p), raster->boundary_distance(p));
+  };
+  shape->thickness_at = [raster](const Eigen::Vector2d& p) {
+    return raster->axis_distance(p) + raster->boundary_distance(p);
+  };
+  shape->peak_point = raster->peak;
+  shape->largest_thickness = shape->thickness_at(shape->peak_point);
+  // Outside, the distance to the nearest pixel square on the blob's boundary (one with a
+  // 4-neighbour outside the blob), found by a scan over them.
+  const std::shared_ptr<std::vector<Eigen::Vector2d>> edge = boundary_pixels(b, id, label, w, h);
+  for (const Eigen::Vector2d& e : *edge) {
+    const Eigen::Vector2d far =
+        (shape->peak_point - e)
+            .cwiseAbs()
+            .cwiseMax((shape->peak_point - e - Eigen::Vector2d::Ones()).cwiseAbs());
+    shape->largest_reach = std::max(shape->largest_reach, far.norm());
+  }
+  auto pixels = std::make_shared<const std::vector<uint8_t>>(inside);
+  shape->distance_at = [edge, pixels, width, height, x0 = b.x0 - 1,
+                        y0 = b.y0 - 1](const Eigen::Vector2d& p) {
+    const double px = std::floor(p.x()) - x0, py = std::floor(p.y()) - y0;
+    if (px >= 0 && py >= 0 && px < width && py < height &&
+        (*pixels)[size_t(py) * size_t(width) + size_t(px)])
+      return 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& e : *edge) {
+      const Eigen::Vector2d d = (e - p).cwiseMax(p - e - Eigen::Vector2d::Ones()).cwiseMax(0.0);
+      best = std::min(best, d.squaredNorm());
+    }
+    return std::sqrt(best);
+  };
+  return shape;
+}
+
 }  // namespace
 
 Region Region::polygon(const std::vector<Eigen::Vector2d>& vertices) {
@@ -160,40 +315,8 @@ std::vector<Region> Region::from_mask(const Image& mask, size_t* dropped) {
               " x " + std::to_string(mask.channels) + " with " +
               std::to_string(mask.pixels.size()) + " bytes");
   const int w = mask.width, h = mask.height;
-  // 8-connected blobs of non-zero first-channel pixels, labelled in raster order.
-  struct Blob {
-    int x0, y0, x1, y1;  // pixel bounding box, inclusive
-    int pixels = 0;
-  };
-  std::vector<Blob> blobs;
-  std::vector<int> label(size_t(w) * h, -1);
-  std::vector<int> stack;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!mask.at(x, y)[0] || label[size_t(y) * w + x] >= 0) continue;
-      const int id = int(blobs.size());
-      Blob blob{x, y, x, y, 0};
-      label[size_t(y) * w + x] = id;
-      stack.assign(1, y * w + x);
-      while (!stack.empty()) {
-        const int px = stack.back() % w, py = stack.back() / w;
-        stack.pop_back();
-        ++blob.pixels;
-        blob.x0 = std::min(blob.x0, px);
-        blob.x1 = std::max(blob.x1, px);
-        blob.y0 = std::min(blob.y0, py);
-        blob.y1 = std::max(blob.y1, py);
-        for (int qy = std::max(py - 1, 0); qy <= std::min(py + 1, h - 1); ++qy) {
-          for (int qx = std::max(px - 1, 0); qx <= std::min(px + 1, w - 1); ++qx) {
-            if (!mask.at(qx, qy)[0] || label[size_t(qy) * w + qx] >= 0) continue;
-            label[size_t(qy) * w + qx] = id;
-            stack.push_back(qy * w + qx);
-          }
-        }
-      }
-      blobs.push_back(blob);
-    }
-  }
+  const Blobs found = label_blobs(mask);
+  const std::vector<Blob>& blobs = found.blobs;
   require(!blobs.empty(), "Region::from_mask", "the mask has no non-zero pixel");
   const size_t specks = size_t(std::count_if(
       blobs.begin(), blobs.end(), [](const Blob& b) { return b.pixels < kMinMaskBlobPixels; }));
@@ -206,79 +329,12 @@ std::vector<Region> Region::from_mask(const Image& mask, size_t* dropped) {
   for (size_t id = 0; id < blobs.size(); ++id) {
     const Blob& b = blobs[id];
     if (b.pixels < kMinMaskBlobPixels) continue;
-    // One node per pixel centre, the blob's box padded by one outside pixel on every side.
     const int width = b.x1 - b.x0 + 3, height = b.y1 - b.y0 + 3;
-    std::vector<uint8_t> inside(size_t(width) * height, 0);
-    for (int y = b.y0; y <= b.y1; ++y) {
-      for (int x = b.x0; x <= b.x1; ++x) {
-        inside[size_t(y - b.y0 + 1) * width + (x - b.x0 + 1)] =
-            uint8_t(label[size_t(y) * w + x] == int(id));
-      }
-    }
+    const std::vector<uint8_t> inside = blob_nodes(b, int(id), found.label, w, width, height);
     const Eigen::Vector2d origin(b.x0 - 0.5, b.y0 - 0.5);
-    // A blob with one smooth outline is that polygon (so a lens's mesh follows its boundary, as a
-    // polygon's), named a mask and with no anchors.
-    if (const std::optional<std::vector<Eigen::Vector2d>> outline =
-            mask_outline(inside, width, height, origin)) {
-      const std::shared_ptr<FieldShape> shape = polygon_shape(*outline);
-      if (seen_whole_from(shape->peak_point, *outline)) {
-        shape->name = "mask";
-        shape->anchor_points.clear();
-        shape->box.extend(
-            Eigen::AlignedBox2d(Eigen::Vector2d(b.x0, b.y0), Eigen::Vector2d(b.x1 + 1, b.y1 + 1)));
-        regions.push_back(Region(shape));
-        continue;
-      }
-    }
-    auto raster =
-        std::make_shared<const DepthRaster>(depth_raster(inside, width, height, origin, 1.0));
-
-    auto shape = std::make_shared<FieldShape>();
-    shape->name = "mask";
-    shape->box =
-        Eigen::AlignedBox2d(Eigen::Vector2d(b.x0, b.y0), Eigen::Vector2d(b.x1 + 1, b.y1 + 1));
-    shape->depth_at = [raster](const Eigen::Vector2d& p) {
-      return depth_from_distances(raster->axis_distance(p), raster->boundary_distance(p));
-    };
-    shape->thickness_at = [raster](const Eigen::Vector2d& p) {
-      return raster->axis_distance(p) + raster->boundary_distance(p);
-    };
-    shape->peak_point = raster->peak;
-    shape->largest_thickness = shape->thickness_at(shape->peak_point);
-    // Outside, the distance to the nearest pixel square on the blob's boundary (one with a
-    // 4-neighbour outside the blob), found by a scan over them.
-    auto in_blob = [&](int x, int y) {
-      return x >= 0 && y >= 0 && x < w && y < h && label[size_t(y) * w + x] == int(id);
-    };
-    auto edge = std::make_shared<std::vector<Eigen::Vector2d>>();  // pixel corners (x, y)
-    for (int y = b.y0; y <= b.y1; ++y) {
-      for (int x = b.x0; x <= b.x1; ++x) {
-        if (in_blob(x, y) &&
-            !(in_blob(x - 1, y) && in_blob(x + 1, y) && in_blob(x, y - 1) && in_blob(x, y + 1)))
-          edge->emplace_back(x, y);
-      }
-    }
-    for (const Eigen::Vector2d& e : *edge) {
-      const Eigen::Vector2d far =
-          (shape->peak_point - e)
-              .cwiseAbs()
-              .cwiseMax((shape->peak_point - e - Eigen::Vector2d::Ones()).cwiseAbs());
-      shape->largest_reach = std::max(shape->largest_reach, far.norm());
-    }
-    auto pixels = std::make_shared<const std::vector<uint8_t>>(inside);
-    shape->distance_at = [edge, pixels, width, height, x0 = b.x0 - 1,
-                          y0 = b.y0 - 1](const Eigen::Vector2d& p) {
-      const double px = std::floor(p.x()) - x0, py = std::floor(p.y()) - y0;
-      if (px >= 0 && py >= 0 && px < width && py < height &&
-          (*pixels)[size_t(py) * size_t(width) + size_t(px)])
-        return 0.0;
-      double best = std::numeric_limits<double>::infinity();
-      for (const Eigen::Vector2d& e : *edge) {
-        const Eigen::Vector2d d = (e - p).cwiseMax(p - e - Eigen::Vector2d::Ones()).cwiseMax(0.0);
-        best = std::min(best, d.squaredNorm());
-      }
-      return std::sqrt(best);
-    };
+    // A blob with one smooth outline is that polygon; any other its raster.
+    std::shared_ptr<FieldShape> shape = outline_shape(b, inside, width, height, origin);
+    if (!shape) shape = raster_shape(b, int(id), found.label, w, h, inside, width, height, origin);
     regions.push_back(Region(std::move(shape)));
   }
   return regions;
