@@ -216,22 +216,16 @@ struct BuiltMap {
   MapFrame frame;
 };
 
-BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int height,
-                   const char* function) {
-  require(width >= 0 && height >= 0 && width <= kMaxFrame && height <= kMaxFrame, function,
-          "the size " + std::to_string(width) + " x " + std::to_string(height) +
-              " is not in [0, 16384]");
-  const std::string problem = vector_data_problem(data);
-  require(problem.empty(), function, problem);
-
-  auto map = std::make_shared<MapData>();
-  // Every feature's parts, projected (still y north).
+/// Projects every feature's parts into map.features (still y north), each point checked to be
+/// degrees; returns their extent, left empty when the style gives the extent.
+Box project_features(const VectorData& data, const MapStyle& style, const char* function,
+                     MapData& map) {
   Box extent;
-  map->features.resize(data.features.size());
+  map.features.resize(data.features.size());
   for (size_t f = 0; f < data.features.size(); ++f) {
     if (!data.features[f].geometry) continue;
-    add_parts(*data.features[f].geometry, map->features[f]);
-    for (Part& part : map->features[f])
+    add_parts(*data.features[f].geometry, map.features[f]);
+    for (Part& part : map.features[f])
       for (Path& path : part.paths)
         for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
           const Eigen::Vector2d d = checked_degrees(path.points(i, 0), path.points(i, 1), function,
@@ -241,6 +235,12 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
           if (!style.extent) extent.add(p.x(), p.y());
         }
   }
+  return extent;
+}
+
+/// The extent to frame: the points' `extent`, or the style's projected, refused if empty, and
+/// padded where flat so that a single point or a straight line still gets an area around it.
+Box framed_extent(Box extent, const MapStyle& style, const char* function) {
   if (style.extent) {
     const auto& e = *style.extent;
     const Eigen::Vector2d a = project(style.projection, e[0], e[1]);
@@ -249,12 +249,18 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
     extent.add(b.x(), b.y());
   }
   require(!extent.empty(), function, "nothing to frame: the data has no coordinates");
-  // A single point or a straight line still gets an area around it.
   const double pad = style.projection == MapProjection::kPlateCarree ? 0.01 : 0.01 * kPi / 180;
   if (extent.x1 - extent.x0 <= 0) extent.x0 -= pad, extent.x1 += pad;
   if (extent.y1 - extent.y0 <= 0) extent.y0 -= pad, extent.y1 += pad;
-  const double dx = extent.x1 - extent.x0, dy = extent.y1 - extent.y0;
+  return extent;
+}
 
+/// The frame of width x height pixels that shows `extent` centred, never stretched; a side given
+/// as 0 is set from the extent's aspect (both: kVectorMapDefaultWidth wide), refused outside
+/// [1, 16384].
+MapFrame fit_frame(const Box& extent, MapProjection projection, int& width, int& height,
+                   const char* function) {
+  const double dx = extent.x1 - extent.x0, dy = extent.y1 - extent.y0;
   if (width == 0 && height == 0) width = kVectorMapDefaultWidth;
   if (height == 0) height = int(std::lround(width * dy / dx));
   if (width == 0) width = int(std::lround(height * dx / dy));
@@ -262,31 +268,74 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
           "the extent's aspect gives a frame of " + std::to_string(width) + " x " +
               std::to_string(height) + " pixels, outside [1, 16384]: give both sides of the size");
   MapFrame frame;
-  frame.projection = style.projection;
+  frame.projection = projection;
   frame.left = extent.x0;
   frame.top = extent.y1;
   frame.scale = std::min(width / dx, height / dy);  // the extent centred, never stretched
   frame.offset = {(width - frame.scale * dx) / 2, (height - frame.scale * dy) / 2};
+  return frame;
+}
 
-  map->feature_boxes.resize(map->features.size());
-  for (size_t f = 0; f < map->features.size(); ++f)
-    for (Part& part : map->features[f])
+/// Moves every point of map.features from projected coordinates to the frame's pixels, and
+/// sets the paths' and the features' boxes.
+void move_to_frame_pixels(const MapFrame& frame, MapData& map) {
+  map.feature_boxes.resize(map.features.size());
+  for (size_t f = 0; f < map.features.size(); ++f)
+    for (Part& part : map.features[f])
       for (Path& path : part.paths) {
         for (Eigen::Index i = 0; i < path.points.rows(); ++i) {
           path.points.row(i) = frame.from_projected(path.points.row(i).transpose()).transpose();
           path.box.add(path.points(i, 0), path.points(i, 1));
         }
-        map->feature_boxes[f].add(path.box.x0, path.box.y0);
-        map->feature_boxes[f].add(path.box.x1, path.box.y1);
+        map.feature_boxes[f].add(path.box.x0, path.box.y0);
+        map.feature_boxes[f].add(path.box.x1, path.box.y1);
       }
+}
 
-  // The layers' selections and the labels, from the properties.
+/// The label's text for a feature's `properties`: the first of its text properties that is a
+/// non-empty string, or empty.
+std::string label_text(const MapLabelStyle& label, const Json& properties) {
+  for (const std::string& key : label.text) {
+    const auto t = properties.find(key);
+    if (t != properties.end() && t->is_string() && !t->get<std::string>().empty())
+      return t->get<std::string>();
+  }
+  return std::string();
+}
+
+/// Adds the dots and labels of a feature (`parts`, `properties`) that labelled layer `s` selects:
+/// a dot at each point it draws if it has a radius, a label there if the feature has its text.
+void add_labels(const MapLayerStyle& s, const std::vector<Part>& parts, const Json& properties,
+                std::vector<MapLabel>& labels, std::vector<MapDot>& dots) {
+  if (s.radius > 0)
+    for (const Part& part : parts)
+      if (part.kind == Kind::kPoints && draws(s, part.kind))
+        for (const Path& path : part.paths)
+          for (Eigen::Index i = 0; i < path.points.rows(); ++i)
+            dots.push_back({path.points.row(i).transpose(), s.radius, s.fill, s.stroke, s.width,
+                            s.min_zoom, s.max_zoom});
+  if (!properties.is_object()) return;
+  const std::string text = label_text(*s.label, properties);
+  if (text.empty()) return;
+  const auto r = properties.find(s.label->rank);
+  const double rank = r != properties.end() && r->is_number() ? r->get<double>() : 0;
+  for (const Part& part : parts) {
+    if (part.kind != Kind::kPoints || !draws(s, part.kind)) continue;
+    for (const Path& path : part.paths)
+      for (Eigen::Index i = 0; i < path.points.rows(); ++i)
+        labels.push_back({path.points.row(i).transpose(), text, rank, s.radius + 2, *s.label,
+                          s.min_zoom, s.max_zoom});
+  }
+}
+
+/// Sets map.layers, each style layer's selection of the features by their properties, and
+/// map.max_reach; adds the labelled layers' dots and labels.
+void select_layers(const VectorData& data, const MapStyle& style, MapData& map,
+                   std::vector<MapLabel>& labels, std::vector<MapDot>& dots) {
   std::vector<Json> properties(data.features.size());
   for (size_t f = 0; f < data.features.size(); ++f)
     properties[f] = Json::parse(data.features[f].properties, nullptr, false);
-  auto labels = std::make_shared<std::vector<MapLabel>>();
-  auto dots = std::make_shared<std::vector<MapDot>>();
-  map->max_reach = 0;
+  map.max_reach = 0;
   for (const MapLayerStyle& s : style.layers) {
     Layer layer{s, {}};
     std::vector<std::vector<Json>> wanted;
@@ -296,40 +345,28 @@ BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int
     }
     for (size_t f = 0; f < data.features.size(); ++f)
       if (selects(s, wanted, properties[f])) layer.features.push_back(f);
-    map->max_reach = std::max(map->max_reach, s.radius + s.width / 2);
-    if (s.label) {
-      for (size_t f : layer.features) {
-        if (s.radius > 0)
-          for (const Part& part : map->features[f])
-            if (part.kind == Kind::kPoints && draws(s, part.kind))
-              for (const Path& path : part.paths)
-                for (Eigen::Index i = 0; i < path.points.rows(); ++i)
-                  dots->push_back({path.points.row(i).transpose(), s.radius, s.fill, s.stroke,
-                                   s.width, s.min_zoom, s.max_zoom});
-        const Json& p = properties[f];
-        if (!p.is_object()) continue;
-        std::string text;
-        for (const std::string& key : s.label->text) {
-          const auto t = p.find(key);
-          if (t != p.end() && t->is_string() && !t->get<std::string>().empty()) {
-            text = t->get<std::string>();
-            break;
-          }
-        }
-        if (text.empty()) continue;
-        const auto r = p.find(s.label->rank);
-        const double rank = r != p.end() && r->is_number() ? r->get<double>() : 0;
-        for (const Part& part : map->features[f]) {
-          if (part.kind != Kind::kPoints || !draws(s, part.kind)) continue;
-          for (const Path& path : part.paths)
-            for (Eigen::Index i = 0; i < path.points.rows(); ++i)
-              labels->push_back({path.points.row(i).transpose(), text, rank, s.radius + 2, *s.label,
-                                 s.min_zoom, s.max_zoom});
-        }
-      }
-    }
-    map->layers.push_back(std::move(layer));
+    map.max_reach = std::max(map.max_reach, s.radius + s.width / 2);
+    if (s.label)
+      for (size_t f : layer.features) add_labels(s, map.features[f], properties[f], labels, dots);
+    map.layers.push_back(std::move(layer));
   }
+}
+
+BuiltMap build_map(const VectorData& data, const MapStyle& style, int width, int height,
+                   const char* function) {
+  require(width >= 0 && height >= 0 && width <= kMaxFrame && height <= kMaxFrame, function,
+          "the size " + std::to_string(width) + " x " + std::to_string(height) +
+              " is not in [0, 16384]");
+  const std::string problem = vector_data_problem(data);
+  require(problem.empty(), function, problem);
+
+  auto map = std::make_shared<MapData>();
+  const Box extent = framed_extent(project_features(data, style, function, *map), style, function);
+  const MapFrame frame = fit_frame(extent, style.projection, width, height, function);
+  move_to_frame_pixels(frame, *map);
+  auto labels = std::make_shared<std::vector<MapLabel>>();
+  auto dots = std::make_shared<std::vector<MapDot>>();
+  select_layers(data, style, *map, *labels, *dots);
   auto channel = [](double c) { return uint8_t(std::lround(std::clamp(c, 0.0, 1.0) * 255)); };
   map->background = {channel(style.background.r), channel(style.background.g),
                      channel(style.background.b)};
