@@ -121,6 +121,82 @@ bool is_zoom(const std::string& name) {
          std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+/// The deepest zoom of the tile folder `path` (`folder`): its zoom folders 0, 1, 2, ... up to it,
+/// refused if there is none, one is missing or it is above 30.
+int deepest_zoom(const std::string& path, const fs::path& folder) {
+  std::error_code error;
+  std::set<int> zooms;
+  for (const fs::directory_entry& entry : fs::directory_iterator(path, error))
+    if (entry.is_directory(error) && is_zoom(entry.path().filename().string()))
+      zooms.insert(std::stoi(entry.path().filename().string()));
+  require(!error, kFn, "'" + path + "' cannot be listed: " + error.message());
+  require(!zooms.empty(), kFn,
+          "'" + path + "' has no zoom folders (subfolders 0, 1, 2, ... holding x/y.png tiles)");
+  const int zmax = *zooms.rbegin();
+  // Tiles of at least 2 px at zoom 30 already make 2^31 texels a side, past the limit below; a
+  // larger zoom would shift the sizes out of their integers.
+  require(zmax <= 30, kFn,
+          "'" + path + "' has a zoom folder " + std::to_string(zmax) +
+              ": zooms above 30 (2^30 texels a side) are not read");
+  for (int z = 0; z <= zmax; ++z)
+    require(zooms.count(z) > 0, kFn,
+            "'" + path + "' has zooms up to " + std::to_string(zmax) + " but no '" +
+                (folder / std::to_string(z)).string() + "': a missing zoom level");
+  return zmax;
+}
+
+/// Reads the root tile, 0/0/0, into `state` (its path, size, channels and pixels; counted as
+/// read), refusing a missing one, a tile not square or of an odd size, or one too large for
+/// state.zmax.
+void read_root_tile(const std::string& path, TileFolder& state) {
+  const fs::path root = state.file(0, 0, 0);
+  if (root.empty()) {
+    // geolens's own layout, <level>/<x>_<y>.png, has files where XYZ has x folders.
+    std::error_code error;
+    const bool own_layout = fs::is_regular_file(state.folder / "0" / "0_0.png", error);
+    require(false, kFn,
+            in_quotes(state.folder / "0" / "0" / "0.png") + " (the root tile) is missing" +
+                (own_layout ? "; '" + path +
+                                  "' is in png_tile_folder's <level>/<x>_<y>.png layout, which "
+                                  "has no size of its own: read it with a TiledSource"
+                            : std::string()));
+  }
+  state.root_path = root.string();
+  Image root_tile;
+  try {
+    root_tile = load_image(state.root_path);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(std::string(kFn) + ": " + e.what());
+  }
+  ++state.read;
+  const int T = root_tile.width;
+  require(root_tile.width == root_tile.height, kFn,
+          "'" + state.root_path + "' is " + std::to_string(root_tile.width) + " x " +
+              std::to_string(root_tile.height) + ": tiles must be square");
+  require(T % 2 == 0, kFn,
+          "'" + state.root_path + "' is " + std::to_string(T) + " x " + std::to_string(T) +
+              ": the tile size must be even");
+  require((int64_t(T) << state.zmax) <= (int64_t(1) << 30), kFn,
+          "'" + path + "': " + std::to_string(T) + " px tiles at zoom " +
+              std::to_string(state.zmax) + " exceed 2^30 texels a side");
+  state.tile = T;
+  state.channels = root_tile.channels;
+  state.root = std::move(root_tile);
+}
+
+/// The zoom whose side (T << zoom texels) is nearest, by ratio, the frame size asked (its width,
+/// else its height, else 1024), the deeper one on a tie.
+int frame_zoom(int T, int zmax, const SourceFileOptions& options) {
+  const int target =
+      options.width > 0 ? options.width : (options.height > 0 ? options.height : 1024);
+  int best = zmax;
+  for (int z = zmax - 1; z >= 0; --z)
+    if (std::abs(std::log(double(T << z) / target)) <
+        std::abs(std::log(double(T << best) / target)) - 1e-12)
+      best = z;
+  return best;
+}
+
 }  // namespace
 
 SourceFile open_tile_folder(const std::string& path, const SourceFileOptions& options,
@@ -132,56 +208,9 @@ SourceFile open_tile_folder(const std::string& path, const SourceFileOptions& op
   require(fs::is_directory(path, error), kFn, "'" + path + "' is not a folder");
   auto state = std::make_shared<TileFolder>();
   state->folder = path;
-  std::set<int> zooms;
-  for (const fs::directory_entry& entry : fs::directory_iterator(path, error))
-    if (entry.is_directory(error) && is_zoom(entry.path().filename().string()))
-      zooms.insert(std::stoi(entry.path().filename().string()));
-  require(!error, kFn, "'" + path + "' cannot be listed: " + error.message());
-  require(!zooms.empty(), kFn,
-          "'" + path + "' has no zoom folders (subfolders 0, 1, 2, ... holding x/y.png tiles)");
-  state->zmax = *zooms.rbegin();
-  // Tiles of at least 2 px at zoom 30 already make 2^31 texels a side, past the limit below; a
-  // larger zoom would shift the sizes out of their integers.
-  require(state->zmax <= 30, kFn,
-          "'" + path + "' has a zoom folder " + std::to_string(state->zmax) +
-              ": zooms above 30 (2^30 texels a side) are not read");
-  for (int z = 0; z <= state->zmax; ++z)
-    require(zooms.count(z) > 0, kFn,
-            "'" + path + "' has zooms up to " + std::to_string(state->zmax) + " but no '" +
-                (state->folder / std::to_string(z)).string() + "': a missing zoom level");
-
-  const fs::path root = state->file(0, 0, 0);
-  if (root.empty()) {
-    // geolens's own layout, <level>/<x>_<y>.png, has files where XYZ has x folders.
-    const bool own_layout = fs::is_regular_file(state->folder / "0" / "0_0.png", error);
-    require(false, kFn,
-            "'" + (state->folder / "0" / "0" / "0.png").string() + "' (the root tile) is missing" +
-                (own_layout ? "; '" + path +
-                                  "' is in png_tile_folder's <level>/<x>_<y>.png layout, which "
-                                  "has no size of its own: read it with a TiledSource"
-                            : std::string()));
-  }
-  state->root_path = root.string();
-  Image root_tile;
-  try {
-    root_tile = load_image(state->root_path);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(std::string(kFn) + ": " + e.what());
-  }
-  ++state->read;
-  const int T = root_tile.width;
-  require(root_tile.width == root_tile.height, kFn,
-          "'" + state->root_path + "' is " + std::to_string(root_tile.width) + " x " +
-              std::to_string(root_tile.height) + ": tiles must be square");
-  require(T % 2 == 0, kFn,
-          "'" + state->root_path + "' is " + std::to_string(T) + " x " + std::to_string(T) +
-              ": the tile size must be even");
-  require((int64_t(T) << state->zmax) <= (int64_t(1) << 30), kFn,
-          "'" + path + "': " + std::to_string(T) + " px tiles at zoom " +
-              std::to_string(state->zmax) + " exceed 2^30 texels a side");
-  state->tile = T;
-  state->channels = root_tile.channels;
-  state->root = std::move(root_tile);
+  state->zmax = deepest_zoom(path, state->folder);
+  read_root_tile(path, *state);
+  const int T = state->tile;
 
   TiledSourceOptions tiled;
   tiled.tile_size = T;
@@ -192,16 +221,10 @@ SourceFile open_tile_folder(const std::string& path, const SourceFileOptions& op
       [state](const TileRequest& request) { return state->provide(request); }, tiled);
   state->source = source.get();
 
-  const int target =
-      options.width > 0 ? options.width : (options.height > 0 ? options.height : 1024);
-  int frame_zoom = state->zmax;
-  for (int z = state->zmax - 1; z >= 0; --z)
-    if (std::abs(std::log(double(T << z) / target)) <
-        std::abs(std::log(double(T << frame_zoom) / target)) - 1e-12)
-      frame_zoom = z;
+  const int zoom = frame_zoom(T, state->zmax, options);
   SourceFile file;
-  file.frame_width = file.frame_height = T << frame_zoom;
-  file.scale = std::ldexp(1.0, state->zmax - frame_zoom);
+  file.frame_width = file.frame_height = T << zoom;
+  file.scale = std::ldexp(1.0, state->zmax - zoom);
   file.kind = "tiles";
   // Each zoom is drawn on its own (labels, line widths): blended only about their midpoint.
   file.level_band = 0.25;
