@@ -22,6 +22,73 @@ void check(int error, const char* what) {
 constexpr uint32_t kMaxSide = 1u << 16;
 constexpr size_t kMaxChunk = size_t(64) << 20;
 
+/// Refuses a PNG whose header claims more pixels than geolens reads, in geolens's words: the
+/// size from the header's own bytes (big-endian width and height after the signature and the
+/// IHDR chunk's length and type).
+void check_claimed_size(const std::vector<uint8_t>& bytes) {
+  if (bytes.size() < 24) return;
+  auto word = [&](size_t at) {
+    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+           uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+  };
+  const uint32_t width = word(16), height = word(20);
+  if (width > kMaxSide || height > kMaxSide || uint64_t(width) * height > kMaxPixels)
+    throw CodecError("PNG: " + std::to_string(width) + " x " + std::to_string(height) +
+                     " pixels is more than geolens reads (2^28, sides up to 2^16)");
+}
+
+/// A decoder of `bytes` (which it keeps pointing to) with geolens's limits.
+Context png_decoder(const std::vector<uint8_t>& bytes) {
+  Context ctx(spng_ctx_new(0), &spng_ctx_free);
+  if (!ctx) throw CodecError("out of memory");
+  check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "PNG");
+  check(spng_set_chunk_limits(ctx.get(), kMaxChunk, kMaxChunk), "PNG");
+  // A damaged chunk is refused, not decoded into made-up pixels.
+  check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "PNG");
+  check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "PNG");
+  return ctx;
+}
+
+/// The channels kept of a PNG of colour type `color_type`: grey 1, grey and alpha 2, RGB 3,
+/// RGBA 4; a transparency chunk (`has_trns`) adds alpha.
+int kept_channels(uint8_t color_type, bool has_trns) {
+  switch (color_type) {
+    case SPNG_COLOR_TYPE_GRAYSCALE:
+      return has_trns ? 2 : 1;
+    case SPNG_COLOR_TYPE_GRAYSCALE_ALPHA:
+      return 2;
+    case SPNG_COLOR_TYPE_TRUECOLOR:
+    case SPNG_COLOR_TYPE_INDEXED:
+      return has_trns ? 4 : 3;
+    default:
+      return 4;
+  }
+}
+
+/// Appends a decoded RGBA row of `width` pixels (16 bits a value if `deep`, else 8) to `pixels`,
+/// reduced to its `channels` and to 8 bits; Depth::kNonZero makes the first channel 0 or 255.
+void append_row(const std::vector<uint8_t>& row, size_t width, bool deep, int channels, Depth depth,
+                std::vector<uint8_t>& pixels) {
+  // RGBA -> the kept channels: grey takes R, grey + alpha R and A.
+  static constexpr int pick[4][4] = {{0}, {0, 3}, {0, 1, 2}, {0, 1, 2, 3}};
+  for (size_t p = 0; p < width; ++p) {
+    for (int c = 0; c < channels; ++c) {
+      const int k = pick[channels - 1][c];
+      uint8_t value;
+      if (deep) {
+        uint16_t v;
+        std::memcpy(&v, row.data() + (4 * p + size_t(k)) * 2, 2);
+        value = depth == Depth::kNonZero && c == 0 ? uint8_t(v ? 255 : 0)
+                                                   : uint8_t((uint32_t(v) * 255 + 32767) / 65535);
+      } else {
+        value = row[4 * p + size_t(k)];
+        if (depth == Depth::kNonZero && c == 0) value = value ? 255 : 0;
+      }
+      pixels.push_back(value);
+    }
+  }
+}
+
 }  // namespace
 
 bool is_png(const std::vector<uint8_t>& bytes) {
@@ -30,44 +97,13 @@ bool is_png(const std::vector<uint8_t>& bytes) {
 }
 
 Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
-  // The size from the header's own bytes (big-endian width and height after the signature and
-  // the IHDR chunk's length and type), so a size too large is refused in geolens's words.
-  if (bytes.size() >= 24) {
-    auto word = [&](size_t at) {
-      return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
-             uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
-    };
-    const uint32_t width = word(16), height = word(20);
-    if (width > kMaxSide || height > kMaxSide || uint64_t(width) * height > kMaxPixels)
-      throw CodecError("PNG: " + std::to_string(width) + " x " + std::to_string(height) +
-                       " pixels is more than geolens reads (2^28, sides up to 2^16)");
-  }
-  Context ctx(spng_ctx_new(0), &spng_ctx_free);
-  if (!ctx) throw CodecError("out of memory");
-  check(spng_set_image_limits(ctx.get(), kMaxSide, kMaxSide), "PNG");
-  check(spng_set_chunk_limits(ctx.get(), kMaxChunk, kMaxChunk), "PNG");
-  // A damaged chunk is refused, not decoded into made-up pixels.
-  check(spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR), "PNG");
-  check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "PNG");
+  check_claimed_size(bytes);
+  const Context ctx = png_decoder(bytes);
   spng_ihdr ihdr{};
   check(spng_get_ihdr(ctx.get(), &ihdr), "PNG header");
   spng_trns trns{};
   const bool has_trns = spng_get_trns(ctx.get(), &trns) == 0;
-  int channels = 4;
-  switch (ihdr.color_type) {
-    case SPNG_COLOR_TYPE_GRAYSCALE:
-      channels = has_trns ? 2 : 1;
-      break;
-    case SPNG_COLOR_TYPE_GRAYSCALE_ALPHA:
-      channels = 2;
-      break;
-    case SPNG_COLOR_TYPE_TRUECOLOR:
-    case SPNG_COLOR_TYPE_INDEXED:
-      channels = has_trns ? 4 : 3;
-      break;
-    default:
-      channels = 4;
-  }
+  const int channels = kept_channels(ihdr.color_type, has_trns);
   // Decoded a row at a time as RGBA at the file's depth (8 or 16 bits), each row reduced to the
   // file's channels as it comes: the only image held is the result, whose pages are touched
   // only as rows arrive (a 120-byte file claiming 16384 x 16384 RGBA took 1 GiB, zero-filled,
@@ -84,27 +120,10 @@ Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
   image.height = int(ihdr.height);
   image.channels = channels;
   image.pixels.reserve(width * ihdr.height * size_t(channels));
-  // RGBA -> the kept channels: grey takes R, grey + alpha R and A.
-  const int pick[4][4] = {{0}, {0, 3}, {0, 1, 2}, {0, 1, 2, 3}};
   for (uint32_t y = 0; y < ihdr.height; ++y) {
     const int error = spng_decode_row(ctx.get(), row.data(), row_bytes);
     if (error != 0 && !(error == SPNG_EOI && y + 1 == ihdr.height)) check(error, "PNG data");
-    for (size_t p = 0; p < width; ++p) {
-      for (int c = 0; c < channels; ++c) {
-        const int k = pick[channels - 1][c];
-        uint8_t value;
-        if (deep) {
-          uint16_t v;
-          std::memcpy(&v, row.data() + (4 * p + size_t(k)) * 2, 2);
-          value = depth == Depth::kNonZero && c == 0 ? uint8_t(v ? 255 : 0)
-                                                     : uint8_t((uint32_t(v) * 255 + 32767) / 65535);
-        } else {
-          value = row[4 * p + size_t(k)];
-          if (depth == Depth::kNonZero && c == 0) value = value ? 255 : 0;
-        }
-        image.pixels.push_back(value);
-      }
-    }
+    append_row(row, width, deep, channels, depth, image.pixels);
   }
   // The chunks after the last row, through IEND, so the image data's own checksum is read too
   // (a damaged byte can still inflate, to made-up pixels).
