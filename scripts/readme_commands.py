@@ -52,6 +52,8 @@ MADE_ELSEWHERE = {
     "docs/viewer_drag_1.jpg": "docs/viewer_drag.sh",
     "docs/viewer_drag_2.jpg": "docs/viewer_drag.sh",
     "docs/viewer_drag_3.jpg": "docs/viewer_drag.sh",
+    "docs/web_demo.jpg": "scripts/web_pictures.mjs (the browser pages in headless chromium)",
+    "docs/web_map.jpg": "scripts/web_pictures.mjs (the browser pages in headless chromium)",
 }
 
 
