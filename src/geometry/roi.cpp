@@ -56,7 +56,7 @@ Region::Region(std::shared_ptr<const RegionShape> shape) : shape_(std::move(shap
 Region Region::circle(const Eigen::Vector2d& center, double radius) {
   require(center.allFinite(), "Region::circle", "centre is not finite");
   require(std::isfinite(radius) && radius > 0, "Region::circle",
-          "radius must be a positive number, got " + std::to_string(radius));
+          "radius must be a positive number, got " + number_text(radius));
   auto shape = std::make_shared<FieldShape>();
   shape->name = "circle";
   shape->box = Eigen::AlignedBox2d(center.array() - radius, center.array() + radius);

@@ -59,7 +59,7 @@ std::shared_ptr<FieldShape> polygon_shape(const std::vector<Eigen::Vector2d>& ve
   const Eigen::Vector2d origin = box.min().array() - (kPadding - 0.5) * cell;
   const std::vector<uint8_t> inside = rasterize_polygon(vertices, width, height, origin, cell);
   require(std::find(inside.begin(), inside.end(), 1) != inside.end(), "Region::polygon",
-          "the polygon is too thin: no node of its raster (cell " + std::to_string(cell) +
+          "the polygon is too thin: no node of its raster (cell " + number_text(cell) +
               " px) lies inside it");
   const double exact = kExactCells * cell;
   auto field = std::make_shared<const PolygonField>(PolygonField{

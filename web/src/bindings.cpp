@@ -133,7 +133,22 @@ geolens::LensOptions options_from(const val& mesh_or_options) {
     const std::string text = val::global("String")(mesh_or_options[key]).as<std::string>();
     geolens::lens_option_field(key).set(options, text);
   }
+  // A session keeps its mesh from frame to frame (LensSession): silently ignored, the option
+  // gave warps up to 34 px from the CLI's. Checked once the values are (as the CLI checks them).
+  geolens::validate(options);
+  geolens::require_option(options.subdivision.max_levels == 0, "Session", "subdivide",
+                          "must be 0: a session keeps its mesh from frame to frame and does "
+                          "not subdivide it");
   return options;
+}
+
+// `size` as a width or height of pixels: a whole number in [1, 2^20]; InvalidInput otherwise.
+int pixel_count(double size, const char* name) {
+  if (!(size >= 1 && size <= double(1 << 20) && size == std::floor(size)))
+    throw geolens::InvalidInput(std::string("Session: ") + name +
+                                " must be a whole number of pixels in [1, 1048576], got " +
+                                geolens::number_text(size));
+  return int(size);
 }
 
 }  // namespace
@@ -148,9 +163,10 @@ class SessionCore {
   // Starts the session (LensSession(width, height, options)); undefined or an Error.
   val init(double width, double height, val mesh_or_options) {
     return guarded([&] {
+      const int w = pixel_count(width, "width"), h = pixel_count(height, "height");
       geolens::LensOptions options = options_from(mesh_or_options);
-      session_.emplace(width, height, options);
-      width_ = int(std::lround(width)), height_ = int(std::lround(height));
+      session_.emplace(w, h, options);
+      width_ = w, height_ = h;
       return val::undefined();
     });
   }
@@ -166,10 +182,11 @@ class SessionCore {
       const int n = lenses["length"].as<int>();
       for (int i = 0; i < n; ++i) list.push_back(lens_from(lenses[i], size_t(i)));
       geolens::LensResult result = session_->update(list, {}, draft);
-      // The map first: if it throws, the last frame stays as it was.
-      geolens::WarpMap map = geolens::framed_warp_map(result.warp, width_, height_);
       store(result.warp);
-      map_ = std::move(map);
+      // The map's indexes are made on the first forward() or inverse() of this frame: a drag
+      // that maps no point does not pay for them (a fifth of a circle's frame).
+      warp_ = result.warp;
+      map_.reset();
 
       val frame = val::object();
       frame.set("positionsPtr", uintptr_t(positions_.data()));
@@ -233,7 +250,8 @@ class SessionCore {
   val map_points(const val& points, bool forward) const {
     return guarded([&] {
       const std::string name = forward ? "Session.forward" : "Session.inverse";
-      if (!map_) throw geolens::InvalidInput(name + ": no frame yet: call update() first");
+      if (!warp_) throw geolens::InvalidInput(name + ": no frame yet: call update() first");
+      if (!map_) map_ = geolens::framed_warp_map(*warp_, width_, height_);
       const std::vector<double> xy = numbers_from(points, name + ": points");
       if (xy.size() % 2 != 0)
         throw geolens::InvalidInput(name + ": points must be x, y pairs, got " +
@@ -254,9 +272,10 @@ class SessionCore {
 
   std::optional<geolens::LensSession> session_;
   int width_ = 0, height_ = 0;
-  std::vector<double> positions_, texcoords_;  // #V x 2 interleaved: screen, source pixels
-  std::vector<uint32_t> triangles_;            // #F x 3 interleaved vertex indices
-  std::optional<geolens::WarpMap> map_;        // of the last frame, framed at width x height
+  std::vector<double> positions_, texcoords_;    // #V x 2 interleaved: screen, source pixels
+  std::vector<uint32_t> triangles_;              // #F x 3 interleaved vertex indices
+  std::optional<geolens::WarpMesh> warp_;        // the last frame's
+  mutable std::optional<geolens::WarpMap> map_;  // of warp_, framed at width x height; lazily
 };
 
 // The library's number_text, for tests of messages.

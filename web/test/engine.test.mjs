@@ -115,7 +115,7 @@ test("an invalid lens throws an Error with the library's message; the session go
       message: 'validate_lens: lens centre (900, 300) is outside the 800x600 image',
     });
     assert.throws(() => lens.update([circle(400, 300, -1, 2)]), {
-      message: 'Region::circle: radius must be a positive number, got -1.000000',
+      message: 'Region::circle: radius must be a positive number, got -1',
     });
     assert.throws(() => lens.update([{ kind: 'square' }]), {
       message: "Session.update: lens 1: kind must be 'circle' or 'polygon', got 'square'",

@@ -54,7 +54,7 @@ test('zooms outside [1, 8], NaN or not numbers are refused; 1 and 8 are taken', 
 test('circles: a radius that is not positive, a centre not finite or off the image', () => {
   withSession((lens) => {
     const radius = (text) => `Region::circle: radius must be a positive number, got ${text}`;
-    throwsLibrary(() => lens.update([circle({ r: 0 })]), 'InvalidInput', radius('0.000000'));
+    throwsLibrary(() => lens.update([circle({ r: 0 })]), 'InvalidInput', radius('0'));
     throwsLibrary(() => lens.update([circle({ r: NaN })]), 'InvalidInput', radius('nan'));
     throwsLibrary(() => lens.update([circle({ r: Infinity })]), 'InvalidInput', radius('inf'));
     throwsLibrary(() => lens.update([circle({ r: 1e-9 })]), 'InvalidInput',
@@ -160,12 +160,24 @@ test('options: unknown names, text that does not read, values out of range', () 
   }
 });
 
-test('image sizes that are not positive numbers are refused', () => {
-  for (const [width, height] of [[0, 600], [-1, 600], [NaN, 600], [800, Infinity]])
-    throwsLibrary(() => engine.session({ width, height }), 'InvalidInput',
-                  /^make_grid: image size must be positive, got /);
-  throwsLibrary(() => engine.session({ height: 600 }), 'InvalidInput',
-                'make_grid: image size must be positive, got nan x 600.000000');
+test('image sizes that are not whole numbers of pixels in [1, 2^20] are refused', () => {
+  const size = (name, text) => `Session: ${name} must be a whole number of pixels in ` +
+    `[1, 1048576], got ${text}`;
+  const cases = [[0, 600, size('width', '0')], [-1, 600, size('width', '-1')],
+    [NaN, 600, size('width', 'nan')], [800, Infinity, size('height', 'inf')],
+    [800.5, 600, size('width', '800.5')], [3e9, 600, size('width', '3e+09')],
+    [800, 2 ** 20 + 1, size('height', '1048577')]];
+  for (const [width, height, message] of cases)
+    throwsLibrary(() => engine.session({ width, height }), 'InvalidInput', message);
+  throwsLibrary(() => engine.session({ height: 600 }), 'InvalidInput', size('width', 'nan'));
+  engine.session({ width: 1, height: 2 ** 20 }).dispose();
+});
+
+test('subdivide is refused: a session keeps its mesh', () => {
+  throwsLibrary(() => engine.session({ width: 800, height: 600, subdivide: 2 }), 'InvalidOption',
+                'Session: subdivide must be 0: a session keeps its mesh from frame to frame ' +
+                'and does not subdivide it');
+  engine.session({ width: 800, height: 600, subdivide: 0 }).dispose();
 });
 
 test('a refused update leaves the last frame, its views and its map as they were', () => {
