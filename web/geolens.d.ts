@@ -104,9 +104,9 @@ export interface LensOptions {
    */
   draft_mesh?: Numeric;
   /**
-   * Bisection rounds refining triangles the lift stretches, an integer in [0, 8]; default 0.
-   * Checked but not applied by a session: a session keeps its base grid (LensSession), so its
-   * warp is the unsubdivided one (the CLI's `--subdivide` does subdivide).
+   * Bisection rounds refining triangles the lift stretches: only 0 (the default) is taken. A
+   * session keeps its mesh from frame to frame (LensSession), so any other value is refused
+   * (`InvalidOption`); the CLI's `--subdivide` does subdivide.
    */
   subdivide?: Numeric;
   /** The flattening's metric: `'paper'` (Eq. 6 alpha blend, default) or `'spectrum'`. */
@@ -139,9 +139,9 @@ export type LensOptionName = keyof LensOptions;
 
 /** {@link GeolensEngine.session}'s argument: the image's size and the lens options. */
 export interface SessionOptions extends LensOptions {
-  /** The image's width, source pixels, > 0. */
+  /** The image's width, source pixels: a whole number in [1, 1048576]. */
   width: number;
-  /** The image's height, source pixels, > 0. */
+  /** The image's height, source pixels: a whole number in [1, 1048576]. */
   height: number;
 }
 
