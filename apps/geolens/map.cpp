@@ -107,6 +107,45 @@ void warn_about_losses(const MapLosses& losses, const std::string& what, const s
             << losses.polygons << " polygons dropped\n";
 }
 
+// The run's inputs and output, each checked: an output naming an input is refused before any
+// work (RunFiles::check).
+void add_map_files(RunFiles& files, const MapArgs& a) {
+  if (a.input != "-") files.add_input("the input", a.input);
+  require(a.style.empty() || !a.image.empty(), "--style",
+          "is the style of an --image vector map: give --image");
+  if (!a.image.empty()) files.add_input("the --image", a.image);
+  if (!a.style.empty()) files.add_input("the --style file", a.style);
+  for (const LensSpecFile& f : cli::lens_files(a.lens))
+    files.add_input("the --lens " + f.kind + " file", f.path);
+  if (!to_stdout(a)) files.add_output("--output", a.output);
+}
+
+// `data` (named `name`) mapped through `map` as `a` asks, as CSV or GeoJSON text; on a vector
+// map (`degrees`) the source side in degrees. What did not map goes to `losses`.
+std::string mapped_text(const std::variant<PointTable, VectorData>& data, const WarpMap& map,
+                        const MapArgs& a, const std::optional<MapFrame>& degrees,
+                        const std::string& name, MapLosses& losses) {
+  const MapDirection direction = a.inverse ? MapDirection::kInverse : MapDirection::kForward;
+  // On a vector map the source side is in degrees: the input placed on its frame (forward), or
+  // the output told in degrees (inverse).
+  const bool from_degrees = degrees && !a.inverse, to_degrees_out = degrees && a.inverse;
+  if (const PointTable* table = std::get_if<PointTable>(&data)) {
+    MappedPoints mapped =
+        map_points(from_degrees ? to_frame_pixels(*table, *degrees, name) : *table, map, direction);
+    losses = mapped.losses;
+    return point_csv_text(to_degrees_out ? to_degrees(mapped.table, *degrees) : mapped.table);
+  }
+  const VectorData& features = std::get<VectorData>(data);
+  MappedFeatures mapped = cli::naming_options(
+      [&] {
+        return map_features(from_degrees ? to_frame_pixels(features, *degrees, name) : features,
+                            map, MapOptions{direction, a.max_segment});
+      },
+      " (mapping '" + a.input + "')");
+  losses = mapped.losses;
+  return geojson_text(to_degrees_out ? to_degrees(mapped.data, *degrees) : mapped.data);
+}
+
 int run_map(const MapArgs& a) {
   // Everything checked and the input read before the lenses are solved.
   const Format format = pick_format(a);
@@ -117,14 +156,7 @@ int run_map(const MapArgs& a) {
           "must be at least 0.01 pixels, got " + number_text(a.max_segment));
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
-  if (a.input != "-") files.add_input("the input", a.input);
-  require(a.style.empty() || !a.image.empty(), "--style",
-          "is the style of an --image vector map: give --image");
-  if (!a.image.empty()) files.add_input("the --image", a.image);
-  if (!a.style.empty()) files.add_input("the --style file", a.style);
-  for (const LensSpecFile& f : cli::lens_files(a.lens))
-    files.add_input("the --lens " + f.kind + " file", f.path);
-  if (!to_stdout(a)) files.add_output("--output", a.output);
+  add_map_files(files, a);
   files.check();
   const std::string name = a.input == "-" ? "standard input" : a.input;
   std::variant<PointTable, VectorData> data;
@@ -160,28 +192,8 @@ int run_map(const MapArgs& a) {
               << " triangles are flipped (folded): where they fold, a screen point shows several "
                  "source points and --inverse gives one of them\n";
   const WarpMap map = framed_warp_map(result.warp, output_size.first, output_size.second);
-  const MapDirection direction = a.inverse ? MapDirection::kInverse : MapDirection::kForward;
-  std::string text;
   MapLosses losses;
-  // On a vector map the source side is in degrees: the input placed on its frame (forward), or
-  // the output told in degrees (inverse).
-  const bool from_degrees = degrees && !a.inverse, to_degrees_out = degrees && a.inverse;
-  if (const PointTable* table = std::get_if<PointTable>(&data)) {
-    MappedPoints mapped =
-        map_points(from_degrees ? to_frame_pixels(*table, *degrees, name) : *table, map, direction);
-    text = point_csv_text(to_degrees_out ? to_degrees(mapped.table, *degrees) : mapped.table);
-    losses = mapped.losses;
-  } else {
-    const VectorData& features = std::get<VectorData>(data);
-    MappedFeatures mapped = cli::naming_options(
-        [&] {
-          return map_features(from_degrees ? to_frame_pixels(features, *degrees, name) : features,
-                              map, MapOptions{direction, a.max_segment});
-        },
-        " (mapping '" + a.input + "')");
-    text = geojson_text(to_degrees_out ? to_degrees(mapped.data, *degrees) : mapped.data);
-    losses = mapped.losses;
-  }
+  const std::string text = mapped_text(data, map, a, degrees, name, losses);
   warn_about_losses(losses, "the input", a.inverse ? "the output frame" : "the source image");
   if (to_stdout(a)) {
     std::cout << text << std::flush;
