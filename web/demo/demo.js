@@ -5,7 +5,7 @@
 // URL parameters (for links and the browser tests): image=URL (default: the repository's
 // examples/demo.png), size=WxH (fixed canvas size in CSS pixels), lens=circle:CX,CY,R[:ZOOM] or
 // lens=polygon:X,Y;X,Y;...[:ZOOM] (repeatable; source pixels, as the CLI's --lens), model=,
-// mesh=, compare=0 (no classic pane), outlines=0.
+// mesh=, compare=0 (no classic pane), outlines=0, worker=1 (the view solves in a module Worker).
 // Test hooks: window.__geolensView (the view), window.__demo ({ready, classic, drawClassic}).
 
 import createGeolens from '../dist/geolens.mjs';
@@ -74,11 +74,13 @@ function addLens(lens) {
   else view.addPolygon(lens.points, lens.zoom);
 }
 
-const engine = await createGeolens();
+const useWorker = params.get('worker') === '1';
+const engine = useWorker ? null : await createGeolens();
 const view = new GeolensView(canvas, engine, {
   model: ui.model.value,
   mesh: Number(ui.mesh.value),
   outlines: params.get('outlines') !== '0',
+  ...(useWorker ? { worker: true } : {}),
 });
 window.__geolensView = view;
 

@@ -92,6 +92,15 @@ export interface GeolensViewOptions {
   interactive?: boolean;
   /** Called with each frame's figures. */
   onFrame?: ((frame: FrameFigures) => void) | null;
+  /**
+   * Constructor only: solve in a module Worker, off the page's thread. true: the
+   * solver_worker.js next to view.js (it imports ../dist/geolens.mjs); a URL or string: another
+   * copy of it. The engine argument is then not used (null is fine; create() does not call the
+   * factory). pick() and project() stay synchronous (answered from the last frame's mesh on the
+   * page's thread); readPixels() draws the last frame solved (await idle() first); options or
+   * sizes the engine refuses come as 'error' events rather than thrown, and the options go back.
+   */
+  worker?: boolean | string | URL;
   /** Engine: 'focus' (default), 'lift', 'field' or 'auto'. */
   model?: string;
   /** Engine: grid vertices along the long side (100). */
@@ -111,17 +120,26 @@ export interface GeolensViewEventMap {
 }
 
 export class GeolensView extends EventTarget {
-  constructor(canvas: HTMLCanvasElement, engine: GeolensEngineLike, options?: GeolensViewOptions);
+  /** `engine`: what createGeolens() resolves to; not used (may be null) with options.worker. */
+  constructor(
+    canvas: HTMLCanvasElement,
+    engine: GeolensEngineLike | null,
+    options?: GeolensViewOptions,
+  );
 
-  /** Makes a view, creating the engine first when given createGeolens itself. */
+  /**
+   * Makes a view, creating the engine first when given createGeolens itself (not with
+   * options.worker: the worker makes its own).
+   */
   static create(
     canvas: HTMLCanvasElement,
-    engineOrFactory: GeolensEngineLike | (() => Promise<GeolensEngineLike>),
+    engineOrFactory: GeolensEngineLike | (() => Promise<GeolensEngineLike>) | null,
     options?: GeolensViewOptions,
   ): Promise<GeolensView>;
 
   readonly canvas: HTMLCanvasElement;
-  readonly engine: GeolensEngineLike;
+  /** The engine given; null in worker mode unless one was given. */
+  readonly engine: GeolensEngineLike | null;
 
   /** Shows a picture; a picture of another size starts a new session and removes the lenses. */
   setImage(source: PictureSource): Promise<void>;
@@ -163,9 +181,15 @@ export class GeolensView extends EventTarget {
   project(x: number, y: number): Point | null;
   /** A canvas point (CSS pixels) in the picture's frame pixels, no lens involved. */
   toFrame(x: number, y: number): Point;
-  /** Resolves once everything asked is solved (the full mesh) and drawn. */
+  /**
+   * Resolves once everything asked is solved (the full mesh) and drawn; in worker mode once the
+   * worker has answered and its frame is drawn.
+   */
   idle(): Promise<void>;
-  /** Solves and draws now, then reads the canvas back: RGBA, top row first. */
+  /**
+   * Solves and draws now, then reads the canvas back: RGBA, top row first. In worker mode it
+   * draws the last frame solved (await idle() first).
+   */
   readPixels(): { width: number; height: number; data: Uint8Array };
   dispose(): void;
 

@@ -22,6 +22,23 @@
 // Coordinates: "frame" points are pixels of the picture's frame where the warp puts things (the
 // warp's positions); "source" points are pixels of the picture itself (texture coordinates, the
 // lenses' coordinates); "CSS" points are CSS pixels from the canvas's top-left corner.
+//
+// Worker mode (opt-in): the engine runs in a module Worker (solver_worker.js), off the page's
+// thread, so that a first placement or a drag's solve does not freeze the page:
+//
+//   const view = new GeolensView(canvas, null, { worker: true });  // or a URL of the worker
+//   const view = await GeolensView.create(canvas, createGeolens, { worker: true });  // the same
+//
+// The engine argument is not used then (the worker makes its own engine from ../dist/geolens.mjs
+// next to it; create() does not call the factory). Only the newest request waits: while a solve
+// is in flight, later lens states replace the waiting one. pick() and project() stay synchronous:
+// they are answered on the page's thread from the last frame's copied mesh (mesh_locator.js, the
+// engine's rules). What differs: readPixels() draws what was solved last (it cannot wait for the
+// worker: await idle() first); an engine option or picture size the engine refuses is not thrown
+// by setOptions() or setImage() but dispatched as an 'error' event, and the options go back to
+// the last ones the engine took.
+
+import { MeshLocator } from './mesh_locator.js';
 
 const ZOOM_MIN = 1;
 const ZOOM_MAX = 8;
@@ -231,19 +248,24 @@ export class GeolensView extends EventTarget {
   /**
    * @param {HTMLCanvasElement} canvas the canvas to draw on (it gets touch-action: none and a
    *   tabIndex so that it takes keys)
-   * @param {object} engine what createGeolens() resolves to
+   * @param {object|null} engine what createGeolens() resolves to; not used (may be null) in
+   *   worker mode
    * @param {object} [options] view options (restDelay, outlines, background, autoResize,
-   *   interactive, onFrame) and engine options (model, mesh, draftMesh, meshTolerance, ... in
-   *   camelCase or as the library names them); see setOptions()
+   *   interactive, onFrame), engine options (model, mesh, draftMesh, meshTolerance, ... in
+   *   camelCase or as the library names them; see setOptions()) and `worker`: true (the
+   *   solver_worker.js next to this file) or the URL of a solver worker script to solve in a
+   *   module Worker; set here only
    */
   constructor(canvas, engine, options = {}) {
     super();
     if (!canvas || typeof canvas.getContext !== 'function')
       throw new TypeError('GeolensView: canvas must be a <canvas> element');
-    if (!engine || typeof engine.session !== 'function')
+    const { worker = false, ...rest } = options;
+    if (!worker && (!engine || typeof engine.session !== 'function'))
       throw new TypeError('GeolensView: engine must be what createGeolens() resolves to');
     this.canvas = canvas;
-    this.engine = engine;
+    this.engine = engine && typeof engine.session === 'function' ? engine : null;
+    this._solver = null; // worker mode: {worker, nextId, generation, inFlight, waiting, ...}
     this._view = { ...VIEW_DEFAULTS };
     this._engineOptions = { ...ENGINE_DEFAULTS };
     this._lenses = [];
@@ -274,17 +296,20 @@ export class GeolensView extends EventTarget {
     this._disposed = false;
     this._initGL();
     this._listen();
-    this.setOptions(options);
+    if (worker) this._startWorker(worker);
+    this.setOptions(rest);
   }
 
   /**
-   * Makes a view, creating the engine first when given createGeolens itself.
+   * Makes a view, creating the engine first when given createGeolens itself (not in worker
+   * mode, `options.worker`: the worker makes its own).
    * @param {HTMLCanvasElement} canvas
-   * @param {object|Function} engineOrFactory an engine, or createGeolens
+   * @param {object|Function|null} engineOrFactory an engine, or createGeolens
    * @param {object} [options] as the constructor's
    * @returns {Promise<GeolensView>}
    */
   static async create(canvas, engineOrFactory, options = {}) {
+    if (options.worker) return new GeolensView(canvas, engineOrFactory, options);
     const engine =
       typeof engineOrFactory === 'function' ? await engineOrFactory() : engineOrFactory;
     return new GeolensView(canvas, engine, options);
@@ -495,7 +520,10 @@ export class GeolensView extends EventTarget {
     let engineChanged = false;
     const engineOptions = { ...this._engineOptions };
     for (const [key, value] of Object.entries(options)) {
-      if (key in VIEW_DEFAULTS) {
+      if (key === 'worker') {
+        if (Boolean(value) !== Boolean(this._solver))
+          throw new TypeError('GeolensView.setOptions: worker is set by the constructor only');
+      } else if (key in VIEW_DEFAULTS) {
         this._view[key] = value;
       } else {
         const name = snakeCase(key);
@@ -580,7 +608,8 @@ export class GeolensView extends EventTarget {
 
   /**
    * Solves what waits and draws now, then reads the canvas back: device pixels, RGBA, top row
-   * first (premultiplied by alpha where the picture has any).
+   * first (premultiplied by alpha where the picture has any). In worker mode it draws the last
+   * frame solved (the solve it asks for comes later): await idle() first.
    * @returns {{width: number, height: number, data: Uint8Array}}
    */
   readPixels() {
@@ -608,6 +637,10 @@ export class GeolensView extends EventTarget {
     if (this._resizeObserver) this._resizeObserver.disconnect();
     if (this._session) this._session.dispose();
     this._session = null;
+    if (this._solver) {
+      this._solver.worker.terminate();
+      this._solver.inFlight = this._solver.waiting = null;
+    }
     const gl = this._gl;
     if (!gl.isContextLost()) {
       gl.deleteTexture(this._texture);
@@ -672,7 +705,9 @@ export class GeolensView extends EventTarget {
   // A session on a width x height picture with `engineOptions`; if the engine refuses them, it
   // throws and the view keeps the session it had.
   _newSession(width, height, engineOptions) {
-    const session = this.engine.session({ width, height, ...engineOptions });
+    const session = this._solver
+      ? this._askSession(width, height, engineOptions)
+      : this.engine.session({ width, height, ...engineOptions });
     if (this._session) this._session.dispose();
     this._session = session;
     this._width = width;
@@ -703,8 +738,10 @@ export class GeolensView extends EventTarget {
   _isIdle() {
     if (this._disposed || !this._session) return true;
     const draftShown = this._frame !== null && this._frame.draft;
+    const solving = this._solver !== null &&
+      (this._solver.inFlight !== null || this._solver.waiting !== null);
     return !this._solveWanted && !this._moving && !this._needsDraw && !this._textureDirty &&
-      !draftShown;
+      !draftShown && !solving;
   }
 
   _schedule() {
@@ -734,29 +771,46 @@ export class GeolensView extends EventTarget {
     if (!this._session) return;
     const draft = this._moving;
     const lenses = this._lenses.map(copyLens);
+    if (this._solver) {
+      this._solveInWorker(lenses, draft);
+      return;
+    }
     const start = performance.now();
     let frame;
     try {
       frame = this._session.update(lenses, draft);
     } catch (error) {
-      // Back to the lenses of the frame shown; the session keeps that frame.
-      this._lenses = this._good.map(copyLens);
-      if (this._selected >= this._lenses.length) this._selected = -1;
-      this._drag = this._pinch = null;
-      this._moving = false;
-      if (this._frame && this._frame.draft) this._solveWanted = true;
-      this.dispatchEvent(new CustomEvent('error', { detail: { error } }));
-      this._changed('error');
+      this._solveFailed(error);
       return;
     }
     const solveMs = performance.now() - start;
-    const shape = shapeDistortion(frame.texcoords, frame.positions, frame.triangles);
+    this._showFrame(lenses, frame, solveMs,
+      () => lenses.map((lens) => this._session.forward(boundaryPoints(lens))));
+  }
+
+  // A solve failed: back to the lenses of the frame shown; the session keeps that frame.
+  _solveFailed(error) {
+    this._lenses = this._good.map(copyLens);
+    if (this._selected >= this._lenses.length) this._selected = -1;
+    this._drag = this._pinch = null;
+    this._moving = false;
+    if (this._frame && this._frame.draft) this._solveWanted = true;
+    this.dispatchEvent(new CustomEvent('error', { detail: { error } }));
+    this._changed('error');
+  }
+
+  // A solved frame of `lenses` shown: the GPU's mesh, the outlines (frame points, by
+  // outlines()), the figures, the 'frame' event.
+  _showFrame(lenses, frame, solveMs, outlines) {
+    // (The worker sends both made.)
+    const shape = frame.shape || shapeDistortion(frame.texcoords, frame.positions,
+      frame.triangles);
     // The views die with the next update: the GPU's copy is made now (and kept for a lost
     // context).
-    this._mesh = meshVertices(frame.positions, frame.texcoords, frame.triangles);
+    this._mesh = frame.mesh || meshVertices(frame.positions, frame.texcoords, frame.triangles);
     this._uploadMesh();
     this._good = lenses;
-    this._outlines = lenses.map((lens) => this._session.forward(boundaryPoints(lens)));
+    this._outlines = outlines();
     this._frame = {
       lenses: frame.lenses,
       warnings: frame.warnings,
@@ -773,6 +827,107 @@ export class GeolensView extends EventTarget {
     const detail = this._frame;
     if (typeof this._view.onFrame === 'function') this._view.onFrame(detail);
     this.dispatchEvent(new CustomEvent('frame', { detail }));
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Worker mode: the solve in solver_worker.js
+
+  _startWorker(url) {
+    const script = url === true ? new URL('./solver_worker.js', import.meta.url) : url;
+    const worker = new Worker(script, { type: 'module' });
+    this._solver = {
+      worker,
+      nextId: 0,
+      generation: 0, // one per session asked for; replies of an older one are not shown
+      inFlight: null, // the update the worker is solving: {id, lenses, draft, generation}
+      waiting: null, // the newest lens state asked for meanwhile (it replaces older ones)
+      sessionOptions: null, // the engine options of the last session the worker made
+    };
+    worker.addEventListener('message', (e) => this._onWorkerMessage(e.data));
+    worker.addEventListener('error', (e) => {
+      e.preventDefault();
+      this._onWorkerMessage({
+        type: 'error',
+        id: this._solver.inFlight ? this._solver.inFlight.id : -1,
+        request: 'update',
+        error: { name: 'Error', message: `GeolensView: the solver worker failed: ${e.message}` },
+      });
+    });
+  }
+
+  // Asks the worker for a session; returns the page's stand-in for it (pick and project from the
+  // last frame's mesh).
+  _askSession(width, height, engineOptions) {
+    const s = this._solver;
+    s.generation += 1;
+    s.waiting = null;
+    s.sessionOptions = s.sessionOptions || { ...engineOptions };
+    const id = ++s.nextId;
+    s.sessionAsked = { id, options: { ...engineOptions } };
+    s.worker.postMessage({ type: 'session', id, width, height, options: engineOptions });
+    return new LocatedSession();
+  }
+
+  _solveInWorker(lenses, draft) {
+    const s = this._solver;
+    const request = { lenses, draft, generation: s.generation };
+    if (s.inFlight) s.waiting = request;
+    else this._postUpdate(request);
+  }
+
+  _postUpdate(request) {
+    const s = this._solver;
+    request.id = ++s.nextId;
+    s.inFlight = request;
+    s.worker.postMessage({
+      type: 'update',
+      id: request.id,
+      lenses: request.lenses,
+      draft: request.draft,
+      outlines: request.lenses.map(boundaryPoints),
+    });
+  }
+
+  _onWorkerMessage(message) {
+    const s = this._solver;
+    if (this._disposed || !s) return;
+    const error = () => Object.assign(new Error(message.error.message), {
+      name: message.error.name,
+    });
+    if (message.type === 'session') {
+      if (s.sessionAsked && s.sessionAsked.id === message.id)
+        s.sessionOptions = s.sessionAsked.options;
+      return;
+    }
+    if (message.type === 'error' && message.request === 'session') {
+      // The worker keeps the session it had: so do the options.
+      if (s.sessionOptions) this._engineOptions = { ...s.sessionOptions };
+      this.dispatchEvent(new CustomEvent('error', { detail: { error: error() } }));
+      this._changed('error');
+      return;
+    }
+    const request = s.inFlight;
+    if (!request || request.id !== message.id) return;
+    s.inFlight = null;
+    const current = request.generation === s.generation;
+    if (message.type === 'error') {
+      if (current) {
+        s.waiting = null;
+        this._solveFailed(error());
+      }
+    } else if (message.type === 'frame' && current) {
+      this._session.locator = new MeshLocator(message.positions, message.texcoords,
+        message.triangles);
+      this._showFrame(request.lenses, message, message.solveMs, () => message.outlines);
+    }
+    if (s.waiting) {
+      const next = s.waiting;
+      s.waiting = null;
+      if (next.generation === s.generation) this._postUpdate(next);
+    }
+    // A draft shown once the lens rests, nothing more asked: the full mesh.
+    if (!s.inFlight && !this._moving && this._frame && this._frame.draft) this._solveWanted = true;
+    this._schedule();
   }
 
   // ---------------------------------------------------------------------------------------------
@@ -1250,11 +1405,34 @@ export class GeolensView extends EventTarget {
   }
 }
 
+// meshVertices and shapeDistortion are exported for solver_worker.js (which makes both off the
+// page's thread), not as the package's API.
+
+// The page's stand-in for the worker's session (worker mode): forward and inverse from the last
+// frame's mesh (NaN before the first).
+class LocatedSession {
+  constructor() {
+    this.locator = null;
+  }
+
+  forward(points) {
+    return this.locator ? this.locator.forward(points) : new Float64Array(points.length).fill(NaN);
+  }
+
+  inverse(points) {
+    return this.locator ? this.locator.inverse(points) : new Float64Array(points.length).fill(NaN);
+  }
+
+  dispose() {
+    this.locator = null;
+  }
+}
+
 // The GPU's copy of a warp: three vertices per triangle (positions: frame pixels), each with the
 // triangle's affine map from frame to source pixels (its first vertex, the source point there and
 // the Jacobian J, source per frame pixel) and J's largest singular value; triangles of (nearly)
 // no area in the frame are left out, as geolens's renderer leaves them.
-function meshVertices(positions, texcoords, triangles) {
+export function meshVertices(positions, texcoords, triangles) {
   const out = new Float32Array((triangles.length / 3) * 3 * MESH_FLOATS);
   let n = 0;
   for (let t = 0; t < triangles.length; t += 3) {
@@ -1293,7 +1471,7 @@ function meshVertices(positions, texcoords, triangles) {
 // affine map from source to frame (0 for a similarity), as geolens's measure/distortion.h
 // defines it: the mean weighted by source area and the largest over the triangles not flipped,
 // and the triangles flipped (det J <= 0, degenerate ones included).
-function shapeDistortion(source, frame, triangles) {
+export function shapeDistortion(source, frame, triangles) {
   let sum = 0, area = 0, max = 0, flipped = 0;
   for (let t = 0; t < triangles.length; t += 3) {
     const a = 2 * triangles[t], b = 2 * triangles[t + 1], c = 2 * triangles[t + 2];

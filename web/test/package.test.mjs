@@ -27,6 +27,8 @@ test('npm pack makes the package web/example installs and runs', () => {
       'dist/geolens.wasm',
       'geolens.d.ts',
       'package.json',
+      'src/mesh_locator.js',
+      'src/solver_worker.js',
       'src/view.d.ts',
       'src/view.js',
     ]);
