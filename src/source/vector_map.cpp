@@ -262,11 +262,14 @@ MapFrame fit_frame(const Box& extent, MapProjection projection, int& width, int&
                    const char* function) {
   const double dx = extent.x1 - extent.x0, dy = extent.y1 - extent.y0;
   if (width == 0 && height == 0) width = kVectorMapDefaultWidth;
-  if (height == 0) height = int(std::lround(width * dy / dx));
-  if (width == 0) width = int(std::lround(height * dx / dy));
-  require(width >= 1 && height >= 1 && width <= kMaxFrame && height <= kMaxFrame, function,
-          "the extent's aspect gives a frame of " + std::to_string(width) + " x " +
-              std::to_string(height) + " pixels, outside [1, 16384]: give both sides of the size");
+  // The side set from the aspect is checked as a double: a huge one would wrap in an int.
+  const double w = width != 0 ? width : std::round(height * dx / dy);
+  const double h = height != 0 ? height : std::round(width * dy / dx);
+  require(w >= 1 && h >= 1 && w <= kMaxFrame && h <= kMaxFrame, function,
+          "the extent's aspect gives a frame of " + number_text(w) + " x " + number_text(h) +
+              " pixels, outside [1, 16384]: give both sides of the size");
+  width = int(w);
+  height = int(h);
   MapFrame frame;
   frame.projection = projection;
   frame.left = extent.x0;

@@ -181,6 +181,28 @@ TEST_F(VectorMapTest, BothSidesGivenTheMapIsCentredNotStretched) {
     EXPECT_TRUE(is(frame.at(x, y), 0, 0, 255)) << x << ", " << y;
 }
 
+// A side set from the extent's aspect is checked before it becomes an int: a line 3.7e-6 degrees
+// high at a height of 16000 asks for a width of about 4.3e9 pixels (was taken as 8046, wrapped),
+// and the refusal names that width (was a wrapped 1072110565 for a line 1e-9 high).
+TEST_F(VectorMapTest, AFrameSideTooLargeForAnIntIsRefusedNamingItsSize) {
+  const geolens::MapStyle plate =
+      geolens::parse_map_style(R"({"projection": "plate_carree"})", "style");
+  for (const double high : {3.7252833e-6, 1e-9}) {
+    const geolens::VectorData line =
+        geolens::parse_geojson(R"({"type": "LineString", "coordinates": [[0, 0], [1, )" +
+                                   geolens::number_text(high) + "]]}",
+                               "line");
+    try {
+      const SourceFile file = geolens::vector_map_source(line, plate, 0, 16000);
+      ADD_FAILURE() << "accepted as " << file.frame_width << " x " << file.frame_height;
+    } catch (const InvalidInput& e) {
+      const std::string frame =
+          "a frame of " + geolens::number_text(std::round(16000 / high)) + " x 16000 pixels";
+      EXPECT_NE(std::string(e.what()).find(frame), std::string::npos) << e.what();
+    }
+  }
+}
+
 // The map's frame places degrees where the map draws them (the square's corners of the centred
 // 300 x 600 frame above), and tells pixels back in degrees, in both projections.
 TEST_F(VectorMapTest, ItsFramePlacesDegreesWhereItDrawsThemAndBack) {
