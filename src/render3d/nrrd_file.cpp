@@ -73,29 +73,35 @@ std::string trim(const std::string& s) {
   return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
-/// Inflates a gzip (or zlib) stream: exactly `expected` bytes, or fewer if the stream ends.
+/// Inflates a gzip (or zlib) stream: drops its first `skip` bytes (`skipped` is set to the bytes
+/// dropped) and returns the `expected` bytes after them, or fewer if the stream ends.
 /// Deflate expands by at most 1032:1 (zlib's FAQ), so no more than that times `size` is
 /// allocated whatever a header claims: a gzip bomb's claim costs what its bytes can hold.
-std::string inflate_all(const unsigned char* data, size_t size, size_t expected,
-                        const std::string& where) {
+std::string inflate_all(const unsigned char* data, size_t size, size_t skip, size_t expected,
+                        const std::string& where, size_t& skipped) {
   constexpr size_t kMaxDeflateRatio = 1032;
   expected = std::min(expected, size * kMaxDeflateRatio + 64);  // a file's size: no overflow
   std::string out(expected, '\0');
+  std::vector<unsigned char> dropped(std::min<size_t>(skip, 1u << 16));  // the skipped bytes
   z_stream stream{};
   require(inflateInit2(&stream, 15 + 32) == Z_OK, "load_nrrd", where + "zlib failed to start");
   stream.next_in = const_cast<unsigned char*>(data);
+  skipped = 0;
   size_t produced = 0;
   int status = Z_OK;
   size_t remaining_in = size;
   while (produced < expected && status == Z_OK) {
+    const bool skipping = skipped < skip;
     const unsigned chunk_in = unsigned(std::min<size_t>(remaining_in, 1u << 30));
-    const unsigned chunk_out = unsigned(std::min<size_t>(expected - produced, 1u << 30));
+    const unsigned chunk_out = unsigned(skipping ? std::min(skip - skipped, dropped.size())
+                                                 : std::min<size_t>(expected - produced, 1u << 30));
     stream.avail_in = chunk_in;
-    stream.next_out = reinterpret_cast<unsigned char*>(out.data()) + produced;
+    stream.next_out =
+        skipping ? dropped.data() : reinterpret_cast<unsigned char*>(out.data()) + produced;
     stream.avail_out = chunk_out;
     status = inflate(&stream, Z_NO_FLUSH);
     remaining_in -= chunk_in - stream.avail_in;
-    produced += chunk_out - stream.avail_out;
+    (skipping ? skipped : produced) += chunk_out - stream.avail_out;
     if (status == Z_BUF_ERROR && remaining_in == 0) break;  // input ended early
     if (status == Z_BUF_ERROR) status = Z_OK;
   }
@@ -333,16 +339,28 @@ const unsigned char* raw_samples(const HeaderFields& h, const std::string& bytes
   return reinterpret_cast<const unsigned char*>(bytes.data()) + start;
 }
 
-/// The gzip data inflated, checked to be the `expected` bytes `size_text` claims.
-std::string gzip_samples(const std::string& bytes, const Data& data, size_t expected,
-                         const std::string& size_text) {
+/// The gzip data inflated, its first `skip` bytes skipped (the byte skip applies to the inflated
+/// data; -1 is read only with raw encoding), checked to be the `expected` bytes `size_text` claims.
+std::string gzip_samples(const HeaderFields& h, const std::string& bytes, const Data& data,
+                         long long skip, size_t expected, const std::string& size_text) {
+  require(skip != -1, kFn, h.bad("byte skip", "-1 is read only with raw encoding"));
+  require(skip >= 0, kFn, h.bad("byte skip", "not a byte count"));
+  // What is inflated is held to a raw file's limit: a skip costs no more than its bytes would.
+  require(size_t(skip) <= kMaxNrrdBytes - expected, kFn,
+          h.bad("byte skip", "with the samples, more than the " + std::to_string(kMaxNrrdBytes) +
+                                 " bytes of data read"));
   const size_t held = bytes.size() > data.start ? bytes.size() - data.start : 0;
+  size_t skipped = 0;
   std::string inflated =
-      inflate_all(reinterpret_cast<const unsigned char*>(bytes.data()) + data.start, held, expected,
-                  data.where);
+      inflate_all(reinterpret_cast<const unsigned char*>(bytes.data()) + data.start, held,
+                  size_t(skip), expected, data.where, skipped);
+  require(skipped == size_t(skip), kFn,
+          data.where + "the byte skip (" + std::to_string(skip) +
+              ") is beyond the end of the gzip data (" + std::to_string(skipped) + " bytes)");
   require(inflated.size() == expected, kFn,
           data.where + "the header claims " + size_text + ", the gzip data holds " +
-              std::to_string(inflated.size()) + " bytes");
+              std::to_string(inflated.size()) + " bytes" +
+              (skip > 0 ? " after the byte skip" : ""));
   return inflated;
 }
 
@@ -404,7 +422,7 @@ ScalarVolume load_nrrd(const std::string& path) {
   if (encoding == "raw") {
     samples = raw_samples(h, data_bytes, data, skip, expected, size_text);
   } else {
-    inflated = gzip_samples(data_bytes, data, expected, size_text);
+    inflated = gzip_samples(h, data_bytes, data, skip, expected, size_text);
     samples = reinterpret_cast<const unsigned char*>(inflated.data());
   }
   volume.values.resize(count);

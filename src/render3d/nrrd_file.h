@@ -12,8 +12,9 @@ namespace geolens {
 /// Reads a 3D NRRD file (magic NRRD0001 - NRRD0005) with its data attached after the blank line
 /// or detached ("data file: NAME", relative to the header's folder). Fields used: type (the
 /// int8 ... uint32, float and double spellings of the format), dimension (3), sizes, encoding
-/// (raw, gzip / gz), endian (for multi-byte types), byte skip (raw only; -1 = data at the
-/// file's end), spacings or space directions (the vectors' lengths; 1 where absent or nan).
+/// (raw, gzip / gz), endian (for multi-byte types), byte skip (bytes of the raw data, -1 = data
+/// at the file's end; for gzip, bytes of the inflated data), spacings or space directions (the
+/// vectors' lengths; 1 where absent or nan).
 /// Other fields and key:=value pairs are ignored. Throws InvalidInput naming "load_nrrd" and the
 /// file, with the header line or field at fault: a missing or unknown magic, type or encoding,
 /// a dimension other than 3, a size of zero, data that ends before sizes x type bytes (the

@@ -162,6 +162,33 @@ TEST_F(NrrdFile, GzipSamplesReadAsTheirRawTwin) {
   expect_small(load_nrrd(write("detached.nhdr", header)));
 }
 
+// Gzip data: the byte skip skips bytes of the inflated data, attached or detached (the NRRD
+// format's rule; the skip was ignored); a skip past them is refused, and -1, read only with raw.
+TEST_F(NrrdFile, AByteSkipSkipsGzipDataAfterItIsInflated) {
+  auto gzip_header = [](const std::string& fields) {
+    std::string header = small_header(fields);
+    return header.replace(header.find("encoding: raw"), 13, "encoding: gzip");
+  };
+  expect_small(load_nrrd(write(
+      "attached.nrrd", gzip_header("byte skip: 4\n") + gzip_stored("HEAD" + small_samples()))));
+  write("samples.raw.gz", gzip_stored("HEAD" + small_samples()));
+  expect_small(
+      load_nrrd(write("detached.nhdr", gzip_header("data file: samples.raw.gz\nbyte skip: 4\n"))));
+  const std::pair<std::string, std::string> cases[] = {
+      {"byte skip: 20\n", "the byte skip (20) is beyond the end of the gzip data (12 bytes)"},
+      {"byte skip: 2\n", "the gzip data holds 10 bytes after the byte skip"},
+      {"byte skip: -1\n", "(byte skip: -1): -1 is read only with raw encoding"},
+      {"byte skip: -2\n", "(byte skip: -2): not a byte count"},
+      {"byte skip: 2000000000\n",
+       "(byte skip: 2000000000): with the samples, more than the 1074790400 bytes of data read"},
+  };
+  for (const auto& [fields, what] : cases) {
+    const std::string file = write("bad.nrrd", gzip_header(fields) + gzip_stored(small_samples()));
+    const std::string message = test::refusal([&] { load_nrrd(file); });
+    EXPECT_NE(message.find(what), std::string::npos) << what << "\n" << message;
+  }
+}
+
 TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
   const std::string data = small_samples();
   const std::string good = small_header() + data;
