@@ -161,7 +161,7 @@ Header parse_header(const std::string& text, const std::string& where) {
     }
     const size_t colon = line.find(':');
     require(colon != std::string::npos, f,
-            where + "header line " + std::to_string(line_number) + " '" + line.substr(0, 60) +
+            where + "header line " + std::to_string(line_number) + " '" + quoted_line(line) +
                 "' is not 'field: value'");
     if (colon + 1 < line.size() && line[colon + 1] == '=') continue;  // key:=value
     header.fields[trim(line.substr(0, colon))] = {trim(line.substr(colon + 1)), line_number};
@@ -187,7 +187,7 @@ struct HeaderFields {
     const auto it = header.fields.find(name);
     if (it == header.fields.end()) return where + "the header has no '" + name + "' field";
     return where + "header line " + std::to_string(it->second.second) + " (" + name + ": " +
-           it->second.first.substr(0, 60) + "): " + what;
+           quoted_line(it->second.first) + "): " + what;
   }
 };
 

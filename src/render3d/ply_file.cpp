@@ -89,8 +89,9 @@ class BodyReader {
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw InvalidInput("load_ply: '" + path_ + "': " + element_->name + " " + std::to_string(row_) +
-                       " of " + std::to_string(element_->count) + ": " + what);
+    throw InvalidInput("load_ply: '" + path_ + "': " + quoted_line(element_->name) + " " +
+                       std::to_string(row_) + " of " + std::to_string(element_->count) + ": " +
+                       what);
   }
 
  private:
@@ -122,8 +123,8 @@ Format read_format(std::istringstream& in, const std::string& bad) {
   else if (name == "binary_big_endian")
     format = Format::big_endian;
   else
-    require(false, kFn, bad + "unknown format '" + name + "'");
-  require(version == "1.0", kFn, bad + "unknown version '" + version + "'");
+    require(false, kFn, bad + "unknown format '" + quoted_line(name) + "'");
+  require(version == "1.0", kFn, bad + "unknown version '" + quoted_line(version) + "'");
   return format;
 }
 
@@ -152,7 +153,7 @@ Property read_property(std::istringstream& in, const std::string& bad) {
   } else {
     in >> property.name;
     property.type = scalar_named(type);
-    require(property.type.has_value(), kFn, bad + "unknown type '" + type + "'");
+    require(property.type.has_value(), kFn, bad + "unknown type '" + quoted_line(type) + "'");
   }
   require(!property.name.empty(), kFn, bad + "the property has no name");
   return property;
@@ -173,7 +174,7 @@ Header read_header(const std::string& text, const std::string& where) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string bad =
-        where + "header line " + std::to_string(line_number) + " '" + line.substr(0, 60) + "': ";
+        where + "header line " + std::to_string(line_number) + " '" + quoted_line(line) + "': ";
     std::istringstream in(line);
     std::string word;
     in >> word;
@@ -192,7 +193,7 @@ Header read_header(const std::string& text, const std::string& where) {
       require(!header.elements.empty(), kFn, bad + "a property before any element");
       header.elements.back().properties.push_back(read_property(in, bad));
     } else {
-      require(false, kFn, bad + "unknown keyword '" + word + "'");
+      require(false, kFn, bad + "unknown keyword '" + quoted_line(word) + "'");
     }
   }
   require(have_format, kFn, where + "the header has no format line");
@@ -213,13 +214,13 @@ void check_row_counts(const Header& header, size_t text_size, const std::string&
       row_bytes = std::max<size_t>(1, 2 * e.properties.size());
     } else {
       require(!e.properties.empty() || e.count == 0, kFn,
-              where + "element '" + e.name + "' has " + std::to_string(e.count) +
+              where + "element '" + quoted_line(e.name) + "' has " + std::to_string(e.count) +
                   " rows but no properties");
       for (const Property& property : e.properties)
         row_bytes += size_t(detail::voxel_bytes(property.count_type.value_or(*property.type)));
     }
     require(e.count == 0 || size_t(e.count) <= data_bytes / row_bytes, kFn,
-            where + "element '" + e.name + "' claims " + std::to_string(e.count) +
+            where + "element '" + quoted_line(e.name) + "' claims " + std::to_string(e.count) +
                 " rows, more than its " + std::to_string(data_bytes) + " bytes of data hold");
   }
 }

@@ -217,6 +217,11 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
       {small_header("byte skip: lots\n") + data, "(byte skip: lots): not -1 or a byte count"},
       {small_header("line skip: 2.5\n") + data, "(line skip: 2.5): not a line count"},
       {small_header().substr(0, small_header().size() - 1), "no data"},
+      // Control characters of a header line are quoted, not sent to the terminal.
+      {replaced("sizes: 3 2 2", "sizes\x1b[31m 3 2 2"),
+       "header line 5 'sizes\\x1b[31m 3 2 2' is not 'field: value'"},
+      {replaced("type: uint8", "type: \x1b[31muint8"),
+       "header line 3 (type: \\x1b[31muint8): unknown type"},
   };
   int i = 0;
   for (const auto& [bytes, what] : cases) {
@@ -224,6 +229,7 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
     const std::string message = test::refusal([&] { load_nrrd(file); });
     EXPECT_EQ(message.rfind("load_nrrd: '" + file + "'", 0), 0u) << message;
     EXPECT_NE(message.find(what), std::string::npos) << what << "\n" << message;
+    EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
   }
   // A missing detached data file: the message names the header and the data file.
   const std::string lost = write("lost.nhdr", small_header("data file: gone.raw\n"));

@@ -189,11 +189,19 @@ TEST_F(PlyFile, RefusesBadHeadersNamingTheFileAndTheLine) {
        "float y\nproperty float z\n" +
            face + "end_header\n" + std::string(40, '\0'),
        "element 'vertex' claims 1000 rows, more than its 40 bytes of data hold"},
+      // Control characters of a header line or an element's name are quoted, not sent to the
+      // terminal.
+      {ascii + vertex + "colour\x1b[31m 3\n" + face + rows,
+       "header line 7 'colour\\x1b[31m 3': unknown keyword 'colour\\x1b[31m'"},
+      {"ply\nformat binary_little_endian 1.0\nelement junk\x1b[2J 5\n" + vertex + face +
+           "end_header\n",
+       "element 'junk\\x1b[2J' has 5 rows but no properties"},
   };
   int i = 0;
   for (const auto& [bytes, what] : cases) {
     const std::string message = refusal("bad" + std::to_string(i++) + ".ply", bytes);
     EXPECT_NE(message.find(what), std::string::npos) << what << "\n" << message;
+    EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
   }
 }
 
