@@ -260,12 +260,15 @@ Layout find_layout(const std::vector<Element>& elements, const std::string& wher
   layout.pz = property_index(vertex, "z");
   require(layout.px >= 0 && layout.py >= 0 && layout.pz >= 0, kFn,
           where + "the vertex element lacks x, y or z");
-  for (const int p : {layout.px, layout.py, layout.pz})
-    require(!vertex.properties[size_t(p)].count_type, kFn,
-            where + "vertex coordinates must be scalars");
   layout.pnx = property_index(vertex, "nx");
   layout.pny = property_index(vertex, "ny");
   layout.pnz = property_index(vertex, "nz");
+  for (const int p : {layout.px, layout.py, layout.pz, layout.pnx, layout.pny, layout.pnz}) {
+    if (p < 0) continue;  // a missing normal: none are read
+    const Property& property = vertex.properties[size_t(p)];
+    require(!property.count_type, kFn,
+            where + "the vertex property '" + property.name + "' is a list, not a number");
+  }
   layout.normals = layout.pnx >= 0 && layout.pny >= 0 && layout.pnz >= 0;
   layout.list = property_index(face, "vertex_indices");
   if (layout.list < 0) layout.list = property_index(face, "vertex_index");

@@ -15,8 +15,9 @@ namespace geolens {
 /// or binary_big_endian 1.0. Other elements and properties are skipped, any of the scalar types
 /// char/int8 ... double/float64. Throws InvalidInput naming "load_ply" and the file, with the
 /// header line, or the element and row, at fault: a malformed header, a missing x/y/z or face
-/// list, a row with too few values, a face with fewer than 3 corners or naming a missing vertex,
-/// data that ends before the header's counts, and a mesh with no face.
+/// list, an x, y, z, nx, ny or nz declared a list, a row with too few values, a face with fewer
+/// than 3 corners or naming a missing vertex, data that ends before the header's counts, and a mesh
+/// with no face.
 TriangleMesh load_ply(const std::string& path);
 
 }  // namespace geolens

@@ -162,6 +162,23 @@ TEST_F(PlyFile, NormalsAreReadNormalizedOnlyWhenAllThreeArePresent) {
   EXPECT_EQ(without.N.rows(), 0);
 }
 
+// A vertex's coordinates and normals are numbers: one declared a list is refused naming it (a
+// list nx, ny or nz was read as 0 and kept as the normal).
+TEST_F(PlyFile, ListCoordinatesOrNormalsAreRefusedNamingTheProperty) {
+  auto vertex = [](const std::string& listed) {
+    std::string s = "ply\nformat ascii 1.0\nelement vertex 3\n";
+    for (const std::string name : {"x", "y", "z", "nx", "ny", "nz"})
+      s += (name == listed ? "property list uchar float " : "property float ") + name + "\n";
+    return s + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+  };
+  for (const std::string name : {"x", "z", "nx", "ny", "nz"})
+    EXPECT_NE(refusal(name + ".ply", vertex(name))
+                  .find("the vertex property '" + name + "' is a list, not a number"),
+              std::string::npos)
+        << name;
+}
+
 TEST_F(PlyFile, RefusesBadHeadersNamingTheFileAndTheLine) {
   const std::string vertex =
       "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
