@@ -124,11 +124,16 @@ bool is_zoom(const std::string& name) {
 /// The deepest zoom of the tile folder `path` (`folder`): its zoom folders 0, 1, 2, ... up to it,
 /// refused if there is none, one is missing or it is above 30.
 int deepest_zoom(const std::string& path, const fs::path& folder) {
+  // The listing's error is the iterator's alone (a range-for's ++ would throw it as a
+  // filesystem_error); an entry whose type cannot be read (a dangling link) is no zoom folder.
   std::error_code error;
   std::set<int> zooms;
-  for (const fs::directory_entry& entry : fs::directory_iterator(path, error))
-    if (entry.is_directory(error) && is_zoom(entry.path().filename().string()))
-      zooms.insert(std::stoi(entry.path().filename().string()));
+  fs::directory_iterator entry(path, error);
+  for (; !error && entry != fs::directory_iterator(); entry.increment(error)) {
+    std::error_code type_error;
+    if (entry->is_directory(type_error) && is_zoom(entry->path().filename().string()))
+      zooms.insert(std::stoi(entry->path().filename().string()));
+  }
   require(!error, kFn, "'" + path + "' cannot be listed: " + error.message());
   require(!zooms.empty(), kFn,
           "'" + path + "' has no zoom folders (subfolders 0, 1, 2, ... holding x/y.png tiles)");

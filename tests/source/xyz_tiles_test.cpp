@@ -273,6 +273,23 @@ TEST_F(XyzTilesTest, BadFoldersAreRefusedNamingTheFolderOrFile) {
   EXPECT_NE(what.find("has a zoom folder 56: zooms above 30"), std::string::npos) << what;
 }
 
+// An entry of the folder whose type cannot be read (a dangling link) is no zoom folder, and the
+// folder is read: its error had been kept as the listing's, so the folder was refused as
+// "cannot be listed: No such file or directory" when such an entry was listed last.
+TEST_F(XyzTilesTest, ADanglingLinkInTheFolderIsNoZoomFolder) {
+  const int T = 16;
+  write_zoom(world(0, T), T, 0);
+  write_zoom(world(1, T), T, 1);
+  for (int i = 0; i < 20; ++i)
+    fs::create_symlink(dir_ / "gone", dir_ / ("link" + std::to_string(i)));
+  try {
+    const SourceFile file = geolens::open_tile_folder(dir_.string());
+    EXPECT_EQ(file.frame_width, T << 1);
+  } catch (const InvalidInput& e) {
+    ADD_FAILURE() << e.what();
+  }
+}
+
 TEST_F(XyzTilesTest, ATileOfAnotherSizeIsRefusedWhenFetchedNamingIt) {
   const int T = 16;
   write_zoom(world(0, T), T, 0);
