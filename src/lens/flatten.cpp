@@ -376,6 +376,65 @@ double Flattener::max_orientation_step(const Eigen::MatrixX2d& X,
   return s_max > 1.0 ? 1.0 : std::min(1.0, 0.9 * s_max);
 }
 
+double Flattener::local_step(const Eigen::MatrixX2d& X, LocalFit& fit) const {
+  parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      const Triangle& t = triangles_[f];
+      const Eigen::Matrix2d J = jacobian(t, int(f), X);
+      fit.folded[f] = J.determinant() <= 0;
+      const Eigen::Matrix2d M = target(t, J);
+      fit.energy[f] = t.area2c * (J - M).squaredNorm();
+      const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
+      Eigen::Vector2d* q = &fit.share[3 * f];
+      q[0] = q[1] = q[2] = Eigen::Vector2d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        const int a = (k + 1) % 3, c = (k + 2) % 3;
+        const Eigen::Vector2d d = t.w(k) * (M * (s[a] - s[c]));
+        q[a] += d;
+        q[c] -= d;
+      }
+    }
+  });
+  return std::accumulate(fit.energy.begin(), fit.energy.end(), 0.0);
+}
+
+double Flattener::negligible_energy() const {
+  // An energy this small relative to the total weight is the exact solution up to rounding.
+  double total_weight = 0, bounded_weight = 0;
+  for (const Triangle& t : triangles_) {
+    total_weight += t.area2c;
+    if (t.kind == Triangle::kBounded) bounded_weight += t.area2c;
+  }
+  // Bounded-distortion targets make the energy the distance to a feasible map, which falls
+  // geometrically to 0: it is met once the context's mean squared misfit is tolerance^2.
+  return std::max(1e-20 * total_weight, options_.tolerance * options_.tolerance * bounded_weight);
+}
+
+Eigen::MatrixXd Flattener::right_hand_side(const std::vector<Eigen::Vector2d>& share) const {
+  const Eigen::Index n = rest_.rows();
+  Eigen::MatrixXd b(n, 2);
+  for (size_t v = 0; v < size_t(n); ++v) {  // a few additions each: not worth a thread
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
+    b.row(Eigen::Index(v)) = sum.transpose();
+  }
+  return b;
+}
+
+Eigen::MatrixX2d Flattener::global_step(const Eigen::MatrixXd& b,
+                                        const Eigen::MatrixXd& fixed_values) const {
+  factorize();  // the first global step needs it; a start already at the minimum does not
+  Eigen::MatrixX2d next(rest_.rows(), 2);
+  if (solver_y_) {
+    parallel_invoke(
+        *pool_, [&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
+        [&] { next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1)); });
+  } else {
+    next = solver_x_->solve(b, fixed_values);
+  }
+  return next;
+}
+
 FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2d* guess,
                                const SolveControl* control) const {
   require(X0.rows() == rest_.rows(), "Flattener::solve",
@@ -385,51 +444,16 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
           "the second guess must have as many rows as the first");
   FlattenResult r;
   r.X = guess ? *guess : X0;
-  const Eigen::Index n = rest_.rows();
-  // Per triangle corner, its share of the global step's right-hand side: for each edge (a, c)
-  // of weight w, w M (s_a - s_c) goes to a and its negative to c. Gathered per vertex below.
-  std::vector<Eigen::Vector2d> share(triangles_.size() * 3);
-  std::vector<double> triangle_energy(triangles_.size());
-  std::vector<char> folded(triangles_.size());
-  auto local_step = [&]() {
-    parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
-      for (size_t f = begin; f < end; ++f) {
-        const Triangle& t = triangles_[f];
-        const Eigen::Matrix2d J = jacobian(t, int(f), r.X);
-        folded[f] = J.determinant() <= 0;
-        const Eigen::Matrix2d M = target(t, J);
-        triangle_energy[f] = t.area2c * (J - M).squaredNorm();
-        const Eigen::Vector2d s[3] = {Eigen::Vector2d::Zero(), t.S.col(0), t.S.col(1)};
-        Eigen::Vector2d* q = &share[3 * f];
-        q[0] = q[1] = q[2] = Eigen::Vector2d::Zero();
-        for (int k = 0; k < 3; ++k) {
-          const int a = (k + 1) % 3, c = (k + 2) % 3;
-          const Eigen::Vector2d d = t.w(k) * (M * (s[a] - s[c]));
-          q[a] += d;
-          q[c] -= d;
-        }
-      }
-    });
-    return std::accumulate(triangle_energy.begin(), triangle_energy.end(), 0.0);
-  };
+  LocalFit fit(triangles_.size());
   // The guess starts unless it folds a triangle (a flip-safe step cannot unfold it).
-  r.energy.push_back(local_step());
-  if (guess && std::find(folded.begin(), folded.end(), 1) != folded.end()) {
+  r.energy.push_back(local_step(r.X, fit));
+  if (guess && std::find(fit.folded.begin(), fit.folded.end(), 1) != fit.folded.end()) {
     r.X = X0;
-    r.energy.back() = local_step();
+    r.energy.back() = local_step(r.X, fit);
   }
   // Fixed coordinates keep the grid's positions; in free mode vertex 0 keeps the start's.
   const Eigen::MatrixXd fixed_values = options_.boundary == Boundary::kFree ? r.X : rest_;
-  // An energy this small relative to the total weight is the exact solution up to rounding.
-  double total_weight = 0, bounded_weight = 0;
-  for (const Triangle& t : triangles_) {
-    total_weight += t.area2c;
-    if (t.kind == Triangle::kBounded) bounded_weight += t.area2c;
-  }
-  // Bounded-distortion targets make the energy the distance to a feasible map, which falls
-  // geometrically to 0: it is met once the context's mean squared misfit is tolerance^2.
-  const double negligible =
-      std::max(1e-20 * total_weight, options_.tolerance * options_.tolerance * bounded_weight);
+  const double negligible = negligible_energy();
   // A start off its fixed values (a guess that moved a pinned or border vertex) takes at least
   // one global step, which puts them back, however low its energy.
   const bool off_fixed = !keeps_fixed(r.X, fixed_values);
@@ -442,21 +466,9 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
       r.converged = true;
       break;
     }
-    Eigen::MatrixXd b(n, 2);
-    for (size_t v = 0; v < size_t(n); ++v) {  // a few additions each: not worth a thread
-      Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-      for (int k = corner_start_[v]; k < corner_start_[v + 1]; ++k) sum += share[corner_[k]];
-      b.row(Eigen::Index(v)) = sum.transpose();
-    }
-    factorize();  // the first global step needs it; a start already at the minimum does not
-    Eigen::MatrixX2d next(n, 2);
-    if (solver_y_) {
-      parallel_invoke(
-          *pool_, [&] { next.col(0) = solver_x_->solve(b.col(0), fixed_values.col(0)); },
-          [&] { next.col(1) = solver_y_->solve(b.col(1), fixed_values.col(1)); });
-    } else {
-      next = solver_x_->solve(b, fixed_values);
-    }
+    // The global step: the corners' shares gathered per vertex, solved with the fixed values.
+    Eigen::MatrixX2d next = global_step(right_hand_side(fit.share), fixed_values);
+    // Flip-safe: only as far toward it as keeps every triangle's orientation.
     const double step = options_.flip_safe ? max_orientation_step(r.X, next) : 1.0;
     if (step < 1.0) {
       ++r.bounded_steps;
@@ -465,8 +477,9 @@ FlattenResult Flattener::solve(const Eigen::MatrixX2d& X0, const Eigen::MatrixX2
       r.X = std::move(next);
     }
     ++r.iterations;
+    // The local step: the targets fitted to the new positions.
     const double previous = r.energy.back();
-    r.energy.push_back(local_step());
+    r.energy.push_back(local_step(r.X, fit));
     report();
     if (std::abs(previous - r.energy.back()) <= options_.tolerance * previous) {
       r.converged = true;

@@ -127,6 +127,26 @@ class Flattener {
   // The largest step s in (0, 1] from X toward `next` that keeps every triangle's orientation.
   double max_orientation_step(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& next) const;
   Eigen::Matrix2d jacobian(const Triangle& t, int f, const Eigen::MatrixX2d& X) const;
+  // The local step's results per triangle: its corners' shares (3 f + k) of the global step's
+  // right-hand side (for each edge (a, c) of weight w, w M (s_a - s_c) to a, its negative to
+  // c), its energy and whether it is folded.
+  struct LocalFit {
+    explicit LocalFit(size_t triangles)
+        : share(triangles * 3), energy(triangles), folded(triangles) {}
+    std::vector<Eigen::Vector2d> share;
+    std::vector<double> energy;
+    std::vector<char> folded;
+  };
+  // The local step at X (#V x 2): each triangle's target fitted, into `fit`; returns E(X).
+  double local_step(const Eigen::MatrixX2d& X, LocalFit& fit) const;
+  // The energy below which a solve has converged (the exact solution up to rounding, or the
+  // bounded triangles within the tolerance of feasible).
+  double negligible_energy() const;
+  // The global step's right-hand side (#V x 2): the corners' shares summed per vertex.
+  Eigen::MatrixXd right_hand_side(const std::vector<Eigen::Vector2d>& share) const;
+  // The global step's solution (#V x 2) for right-hand side b, fixed coordinates at
+  // `fixed_values` (#V x 2); factorizes first if needed.
+  Eigen::MatrixX2d global_step(const Eigen::MatrixXd& b, const Eigen::MatrixXd& fixed_values) const;
 
   std::shared_ptr<ThreadPool> pool_;
   Eigen::MatrixX3i F_;
