@@ -109,21 +109,9 @@ void Flattener::reweight(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   }
 }
 
-void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
-                         const Eigen::VectorXd& log_scale, const FocusConstraints& focus) {
-  const Eigen::Index n = V3.rows();
-  require(level.size() == n, "Flattener", "level must have one entry per vertex");
-  require(focus.empty() || (focus.focus.size() == size_t(n) && focus.pinned.size() == size_t(n) &&
-                            focus.anisotropy.size() == n && focus.anisotropy.minCoeff() >= 1 &&
-                            std::isfinite(focus.focus_weight) && focus.focus_weight > 0),
-          "Flattener",
-          "focus constraints need one focus, pin and anisotropy bound >= 1 per vertex and a "
-          "positive focus weight");
-  const bool scaled = options_.standard == Standard::kScaled;
-  require(!scaled || (log_scale.size() == n && log_scale.allFinite()), "Flattener",
-          "scaled standard triangles need one finite log scale per vertex");
-  // Standard triangles: the lifted triangle laid flat (paper Fig. 4: v0 at the origin, v1 on the
-  // x axis, v2 above), or the planar triangle scaled.
+std::vector<double> Flattener::lay_standard_triangles(const Eigen::MatrixX3d& V3,
+                                                      const Eigen::VectorXd& log_scale,
+                                                      bool scaled) {
   triangles_.resize(size_t(F_.rows()));
   std::vector<double> planar_area(triangles_.size());
   std::vector<char> degenerate(triangles_.size(), 0);
@@ -157,11 +145,11 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
   require(bad == degenerate.end(), "Flattener",
           "triangle " + std::to_string(bad - degenerate.begin()) +
               (scaled ? " is degenerate or clockwise in the plane" : " is degenerate in 3D"));
-  // The paper weights' area normalization: any constant scales E without moving its minimum;
-  // the planar mean keeps the weights of unlifted triangles bit-identical from lift to lift,
-  // so a moved lens changes only the rows it lifts (WindowedCholesky relies on it).
-  const double mean_area =
-      std::accumulate(planar_area.begin(), planar_area.end(), 0.0) / double(triangles_.size());
+  return planar_area;
+}
+
+void Flattener::weigh_triangles(const Eigen::VectorXd& level, const FocusConstraints& focus,
+                                double mean_area) {
   parallel_for(*pool_, triangles_.size(), [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       Triangle& t = triangles_[f];
@@ -192,6 +180,31 @@ void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& leve
       }
     }
   });
+}
+
+void Flattener::assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
+                         const Eigen::VectorXd& log_scale, const FocusConstraints& focus) {
+  const Eigen::Index n = V3.rows();
+  require(level.size() == n, "Flattener", "level must have one entry per vertex");
+  require(focus.empty() || (focus.focus.size() == size_t(n) && focus.pinned.size() == size_t(n) &&
+                            focus.anisotropy.size() == n && focus.anisotropy.minCoeff() >= 1 &&
+                            std::isfinite(focus.focus_weight) && focus.focus_weight > 0),
+          "Flattener",
+          "focus constraints need one focus, pin and anisotropy bound >= 1 per vertex and a "
+          "positive focus weight");
+  const bool scaled = options_.standard == Standard::kScaled;
+  require(!scaled || (log_scale.size() == n && log_scale.allFinite()), "Flattener",
+          "scaled standard triangles need one finite log scale per vertex");
+  // Standard triangles: the lifted triangle laid flat (paper Fig. 4: v0 at the origin, v1 on the
+  // x axis, v2 above), or the planar triangle scaled.
+  const std::vector<double> planar_area = lay_standard_triangles(V3, log_scale, scaled);
+  // The paper weights' area normalization: any constant scales E without moving its minimum;
+  // the planar mean keeps the weights of unlifted triangles bit-identical from lift to lift,
+  // so a moved lens changes only the rows it lifts (WindowedCholesky relies on it).
+  const double mean_area =
+      std::accumulate(planar_area.begin(), planar_area.end(), 0.0) / double(triangles_.size());
+  // Each triangle's weight, kind (focus constraints) and edge weights.
+  weigh_triangles(level, focus, mean_area);
   laplacian_stale_ = true;  // L_ follows when a factorization needs it
 }
 

@@ -117,6 +117,13 @@ class Flattener {
   };
   void assemble(const Eigen::MatrixX3d& V3, const Eigen::VectorXd& level,
                 const Eigen::VectorXd& log_scale, const FocusConstraints& focus);
+  // assemble()'s steps: each triangle's standard triangle (S, its inverse and 2 A, `scaled` or
+  // the lift laid flat), returning the triangles' planar areas (#F); then their weights c_t
+  // (into area2c), kinds and edge weights w.
+  std::vector<double> lay_standard_triangles(const Eigen::MatrixX3d& V3,
+                                             const Eigen::VectorXd& log_scale, bool scaled);
+  void weigh_triangles(const Eigen::VectorXd& level, const FocusConstraints& focus,
+                       double mean_area);
   // L_ from the triangles' weights, if assemble() changed them since (the first time, its
   // pattern too): only a factorization needs it.
   void update_laplacian() const;
