@@ -71,6 +71,53 @@ SpMat lower_solve(const SpMat& L, const SpMat& B) {
   return X;
 }
 
+// The seed rows (n flags) dilated by whole rings of A's graph, `margin` times their radius
+// sqrt(#rows / pi) and at least 2: n flags, or none if the seed is empty or the window would
+// hold more than kMaxWindowShare of the unknowns.
+std::vector<char> window_rows(const SpMat& A, const std::vector<char>& seed, double margin) {
+  const Eigen::Index n = A.rows();
+  std::vector<int> frontier;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (seed[size_t(i)]) frontier.push_back(int(i));
+  if (frontier.empty()) return {};
+  const double radius = std::sqrt(double(frontier.size()) / M_PI);
+  const int rings = std::max(2, int(std::ceil(margin * radius)));
+  std::vector<char> inside = seed;
+  size_t count = frontier.size();
+  for (int ring = 0; ring < rings && !frontier.empty(); ++ring) {
+    std::vector<int> next;
+    for (const int col : frontier) {
+      for (Eigen::Index k = A.outerIndexPtr()[col]; k < A.outerIndexPtr()[col + 1]; ++k) {
+        const int row = A.innerIndexPtr()[k];
+        if (!inside[size_t(row)]) {
+          inside[size_t(row)] = 1;
+          next.push_back(row);
+        }
+      }
+    }
+    count += next.size();
+    frontier.swap(next);
+  }
+  if (double(count) > kMaxWindowShare * double(n)) return {};
+  return inside;
+}
+
+// S = W^T W (nr x nr), given Wt = W^T: it lives on the rim x rim block (only the rim columns of
+// W, from rim_start, are non-zero), summed densely over the rows of W.
+Eigen::MatrixXd rim_gram(const SpMat& Wt, int rim_start, int nr) {
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(nr, nr);
+  for (Eigen::Index o = 0; o < Wt.outerSize(); ++o) {
+    const Eigen::Index begin = Wt.outerIndexPtr()[o], end = Wt.outerIndexPtr()[o + 1];
+    for (Eigen::Index a = begin; a < end; ++a) {
+      const int ca = Wt.innerIndexPtr()[a] - rim_start;
+      const double va = Wt.valuePtr()[a];
+      for (Eigen::Index b = begin; b < end; ++b)
+        S(Wt.innerIndexPtr()[b] - rim_start, ca) += va * Wt.valuePtr()[b];
+    }
+  }
+  return S;
+}
+
 }  // namespace
 
 WindowedCholesky::WindowedCholesky(const SpMat& A, double margin) : margin_(margin) {
@@ -150,43 +197,36 @@ void WindowedCholesky::refactorize(const SpMat& A, const std::vector<char>& focu
 }
 
 void WindowedCholesky::build_window(const SpMat& A, const std::vector<char>& seed) {
-  // Dilate the seed rows by whole rings of A's graph.
-  std::vector<int> frontier;
-  for (Eigen::Index i = 0; i < n_; ++i)
-    if (seed[size_t(i)]) frontier.push_back(int(i));
-  if (frontier.empty()) {
-    factorize_full(A);
-    last_step_ = Step::kFull;
-    return;
-  }
-  const double radius = std::sqrt(double(frontier.size()) / M_PI);
-  const int rings = std::max(2, int(std::ceil(margin_ * radius)));
-  std::vector<char> inside = seed;
-  size_t count = frontier.size();
-  for (int ring = 0; ring < rings && !frontier.empty(); ++ring) {
-    std::vector<int> next;
-    for (const int col : frontier) {
-      for (Eigen::Index k = A.outerIndexPtr()[col]; k < A.outerIndexPtr()[col + 1]; ++k) {
-        const int row = A.innerIndexPtr()[k];
-        if (!inside[size_t(row)]) {
-          inside[size_t(row)] = 1;
-          next.push_back(row);
-        }
-      }
-    }
-    count += next.size();
-    frontier.swap(next);
-  }
-  if (double(count) > kMaxWindowShare * double(n_)) {
+  // The window's rows: the seed dilated; none if that is empty or no window is worth it.
+  const std::vector<char> inside = window_rows(A, seed, margin_);
+  if (inside.empty()) {
     factorize_full(A);
     last_step_ = Step::kFull;
     return;
   }
   last_step_ = Step::kRebuild;
+  // The unknowns split into O and C, its rim last, and A's entries into their blocks.
+  const int rim_start = split_unknowns(A, inside);
+  const int no = int(outside_.size()), nc = int(window_.size());
+  SpMat A_oo(no, no), A_oc(no, nc);
+  std::vector<Eigen::Triplet<double>> cc;
+  split_entries(A, inside, A_oo, A_oc, cc);
+  // A_OO = L L^T and W = L^-1 A_OC.
+  outer_ = std::make_unique<OrderedLLT>(A_oo);
+  check_factorization(*outer_, no);
+  W_ = lower_solve(outer_->matrixL().nestedExpression(), A_oc);
+  Wt_ = W_.transpose();
+  // M's pattern and the part of its values that stays (-W^T W), analyzed and factorized.
+  build_schur(cc, rim_start);
+  inner_ = std::make_unique<OrderedLLT>();
+  inner_->analyzePattern(M_);
+  factorize_window(A);
+  reference_.assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
+}
 
-  // Split the unknowns, each part in the whole matrix's fill-reducing elimination order (so no
-  // new ordering is computed): O; then C, the rows of C next to O (the rim, where M is dense)
-  // last.
+int WindowedCholesky::split_unknowns(const SpMat& A, const std::vector<char>& inside) {
+  // Each part in the whole matrix's fill-reducing elimination order (so no new ordering is
+  // computed): O; then C, the rows of C next to O (the rim, where M is dense) last.
   std::vector<char> rim(size_t(n_), 0);
   for (Eigen::Index col = 0; col < n_; ++col) {
     if (inside[size_t(col)]) continue;
@@ -207,12 +247,15 @@ void WindowedCholesky::build_window(const SpMat& A, const std::vector<char>& see
   }
   const int rim_start = int(window_.size());
   window_.insert(window_.end(), rim_rows.begin(), rim_rows.end());
+  return rim_start;
+}
+
+void WindowedCholesky::split_entries(const SpMat& A, const std::vector<char>& inside, SpMat& A_oo,
+                                     SpMat& A_oc, std::vector<Eigen::Triplet<double>>& cc) {
   std::vector<int> local(static_cast<size_t>(n_));
   for (size_t i = 0; i < outside_.size(); ++i) local[size_t(outside_[i])] = int(i);
   for (size_t i = 0; i < window_.size(); ++i) local[size_t(window_[i])] = int(i);
-
-  const int no = int(outside_.size()), nc = int(window_.size());
-  std::vector<Eigen::Triplet<double>> oo, oc, cc;
+  std::vector<Eigen::Triplet<double>> oo, oc;
   outside_entries_.clear();
   cc_entry_.clear();
   const double* values = A.valuePtr();
@@ -234,28 +277,14 @@ void WindowedCholesky::build_window(const SpMat& A, const std::vector<char>& see
       }
     }
   }
-  SpMat A_oo(no, no), A_oc(no, nc);
   A_oo.setFromTriplets(oo.begin(), oo.end());
   A_oc.setFromTriplets(oc.begin(), oc.end());
+}
 
-  outer_ = std::make_unique<OrderedLLT>(A_oo);
-  check_factorization(*outer_, no);
-  W_ = lower_solve(outer_->matrixL().nestedExpression(), A_oc);
-  Wt_ = W_.transpose();
-
-  // S = W^T W lives on the rim x rim block (only rim columns of W are non-zero): summed densely
-  // over the rows of W. M = A_CC - S; schur_ keeps -S on M's pattern, the part that stays.
-  const int nr = nc - rim_start;
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(nr, nr);
-  for (Eigen::Index o = 0; o < Wt_.outerSize(); ++o) {
-    const Eigen::Index begin = Wt_.outerIndexPtr()[o], end = Wt_.outerIndexPtr()[o + 1];
-    for (Eigen::Index a = begin; a < end; ++a) {
-      const int ca = Wt_.innerIndexPtr()[a] - rim_start;
-      const double va = Wt_.valuePtr()[a];
-      for (Eigen::Index b = begin; b < end; ++b)
-        S(Wt_.innerIndexPtr()[b] - rim_start, ca) += va * Wt_.valuePtr()[b];
-    }
-  }
+void WindowedCholesky::build_schur(const std::vector<Eigen::Triplet<double>>& cc, int rim_start) {
+  // M = A_CC - S; schur_ keeps -S on M's pattern, the part that stays.
+  const int nc = int(window_.size()), nr = nc - rim_start;
+  const Eigen::MatrixXd S = rim_gram(Wt_, rim_start, nr);
   std::vector<Eigen::Triplet<double>> m = cc;
   m.reserve(cc.size() + size_t(nr) * size_t(nr));
   for (int c = 0; c < nr; ++c)
@@ -271,10 +300,6 @@ void WindowedCholesky::build_window(const SpMat& A, const std::vector<char>& see
     cc_position_[e] = int(std::lower_bound(begin, end, r) - M_.innerIndexPtr());
     schur_[size_t(cc_position_[e])] -= cc[e].value();
   }
-  inner_ = std::make_unique<OrderedLLT>();
-  inner_->analyzePattern(M_);
-  factorize_window(A);
-  reference_.assign(values, values + A.nonZeros());
 }
 
 void WindowedCholesky::factorize_window(const SpMat& A) {

@@ -63,6 +63,14 @@ class WindowedCholesky {
   using OrderedLLT = Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>>;
   void factorize_full(const SpMat& A);
   void build_window(const SpMat& A, const std::vector<char>& seed);
+  // build_window()'s steps for the window's rows `inside` (n flags): window_ and outside_ in
+  // order_, returning where the rim starts in window_; A's entries split into A_OO, A_OC and
+  // the C x C triplets `cc` (with outside_entries_ and cc_entry_); M_'s pattern, schur_ and
+  // cc_position_ from `cc` and Wt_.
+  int split_unknowns(const SpMat& A, const std::vector<char>& inside);
+  void split_entries(const SpMat& A, const std::vector<char>& inside, SpMat& A_oo, SpMat& A_oc,
+                     std::vector<Eigen::Triplet<double>>& cc);
+  void build_schur(const std::vector<Eigen::Triplet<double>>& cc, int rim_start);
   void factorize_window(const SpMat& A);
 
   double margin_;
