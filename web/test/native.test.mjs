@@ -7,6 +7,7 @@
 // messages. `subdivide` is left out: the engine's session ignores it (LensSession keeps its grid).
 // Needs the native CLI: GEOLENS_CLI, else <repo>/build/geolens (a missing one FAILS the tests).
 // Run: node --test web/test/native.test.mjs   (about 15 s on 2 cores)
+import { encodePng } from '../browser-test/png.mjs';
 import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFile } from 'node:child_process';
@@ -15,7 +16,6 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { promisify } from 'node:util';
-import { deflateSync } from 'node:zlib';
 import createGeolens from '../dist/geolens.mjs';
 
 const wasmBinary = readFileSync(new URL('../dist/geolens.wasm', import.meta.url));
@@ -67,38 +67,14 @@ function prng(seed) {
   };
 }
 
-// A grey PNG of width x height (magnify needs an image of the lenses' size for --stats).
-const crcTable = Array.from({ length: 256 }, (_, n) => {
-  let c = n;
-  for (let k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
-  return c >>> 0;
-});
-function crc32(bytes) {
-  let c = 0xffffffff;
-  for (const b of bytes) c = crcTable[(c ^ b) & 0xff] ^ (c >>> 8);
-  return (c ^ 0xffffffff) >>> 0;
-}
-function chunk(type, data) {
-  const out = Buffer.alloc(12 + data.length);
-  out.writeUInt32BE(data.length, 0);
-  out.write(type, 4, 'latin1');
-  data.copy(out, 8);
-  out.writeUInt32BE(crc32(out.subarray(4, 8 + data.length)), 8 + data.length);
-  return out;
-}
+// A grey RGB PNG of width x height (browser-test/png.mjs's writer; magnify needs an image of
+// the lenses' size for --stats).
 const pngs = new Map();
 function greyPng(width, height) {
   const key = `${width}x${height}`;
   if (!pngs.has(key)) {
-    const header = Buffer.alloc(13);
-    header.writeUInt32BE(width, 0);
-    header.writeUInt32BE(height, 4);
-    header.set([8, 0, 0, 0, 0], 8); // 8-bit grey, no interlace
-    const rows = Buffer.alloc((width + 1) * height, 128);
-    for (let y = 0; y < height; ++y) rows[y * (width + 1)] = 0; // filter: none
     const path = scratch(`${key}.png`);
-    writeFileSync(path, Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]),
-      chunk('IHDR', header), chunk('IDAT', deflateSync(rows)), chunk('IEND', Buffer.alloc(0))]));
+    writeFileSync(path, encodePng(width, height, 3, Buffer.alloc(width * height * 3, 128)));
     pngs.set(key, path);
   }
   return pngs.get(key);
