@@ -1,5 +1,6 @@
 #include "geolens/lens/lens_session.h"
 
+#include <algorithm>
 #include <optional>
 #include <utility>
 
@@ -10,7 +11,8 @@
 namespace geolens {
 
 struct LensSession::State {
-  SolveCache caches[2];         // full frames', drafts'
+  explicit State(size_t levels) : caches(levels) {}
+  std::vector<SolveCache> caches;  // per level: full frames', then drafts' (LensSession::solve)
   Eigen::MatrixX2d change;      // what the last update changed in the flattening (#V x 2, or empty)
   std::vector<Lens> lenses;     // the last update's (fitted) lenses
   std::vector<double> heights;  // and their calibrated heights
@@ -19,37 +21,53 @@ struct LensSession::State {
 
 namespace {
 
-// The options of a session's drafts: its grid, if it has its own.
-std::optional<LensOptions> draft_options(const LensOptions& options) {
-  if (options.draft_mesh == 0 || options.draft_mesh == options.mesh) return std::nullopt;
-  LensOptions o = options;
-  o.mesh = options.draft_mesh;
-  return o;
+// The options of a session's draft grids, coarsest first: draft_mesh, then twice that, and so on
+// while finer grids are still coarser than `mesh` (none where draft_mesh is 0 or `mesh`).
+std::vector<LensOptions> draft_options(const LensOptions& options) {
+  std::vector<LensOptions> grids;
+  if (options.draft_mesh == 0 || options.draft_mesh == options.mesh) return grids;
+  for (int mesh = options.draft_mesh; grids.empty() || mesh < options.mesh; mesh *= 2) {
+    LensOptions o = options;
+    o.mesh = mesh;
+    grids.push_back(o);
+  }
+  return grids;
 }
 
 }  // namespace
 
 LensSession::LensSession(double width, double height, const LensOptions& options)
-    : lens_(width, height, options), state_(std::make_unique<State>()) {
-  if (const std::optional<LensOptions> o = draft_options(options))
-    draft_lens_.emplace(width, height, *o);
+    : lens_(width, height, options) {
+  for (const LensOptions& o : draft_options(options)) drafts_.emplace_back(width, height, o);
+  reset();
 }
 LensSession::~LensSession() = default;
 LensSession::LensSession(LensSession&&) noexcept = default;
 LensSession& LensSession::operator=(LensSession&&) noexcept = default;
 
-void LensSession::reset() { state_ = std::make_unique<State>(); }
+void LensSession::reset() {
+  state_ = std::make_unique<State>(1 + std::max<size_t>(drafts_.size(), 1));
+}
 
 LensResult LensSession::update(const std::vector<Lens>& asked, const SolveControl& control,
                                bool draft) {
+  return solve(asked, control, draft ? 1 : 0);
+}
+
+LensResult LensSession::solve(const std::vector<Lens>& asked, const SolveControl& control,
+                              size_t level) {
   State& s = *state_;
-  SolveCache& cache = s.caches[draft ? 1 : 0];
-  const LensPipeline& solver = *(draft && draft_lens_ ? *draft_lens_ : lens_).impl_->pipeline;
+  SolveCache& cache = s.caches[level];
+  const bool draft = level > 0;
+  const LensPipeline& solver =
+      *(draft && !drafts_.empty() ? drafts_[level - 1] : lens_).impl_->pipeline;
   const FittedLenses fit = solver.fitted(asked, &cache, draft);
-  // A draft whose coarse mesh cannot hold a lens's zoom is solved in full: a drag shows the zoom
-  // the lens gets at rest, not a frame at less (a circle sliding away from a side flickered to
-  // 2.41 of 3 on the draft mesh at two places in 120).
-  if (draft && fit.mesh_limited) return update(asked, control, false);
+  // A draft whose coarse mesh cannot hold a lens's zoom is solved on the next finer draft grid,
+  // and in full after the finest: a drag shows the zoom the lens gets at rest, not a frame at
+  // less (a circle sliding away from a side flickered to 2.41 of 3 on the draft mesh at two
+  // places in 120).
+  if (draft && fit.mesh_limited)
+    return solve(asked, control, level < drafts_.size() ? level + 1 : 0);
   // Start from the heights found last time for a lens of the same shape, size and zoom (and
   // model): after a move, one solve usually confirms them.
   const std::vector<Lens>& lenses = fit.lenses;
@@ -75,8 +93,8 @@ LensResult LensSession::update(const std::vector<Lens>& asked, const SolveContro
     cache.predicted.resize(0, 2);
     throw;
   }
-  r.draft = draft && (draft_lens_ || (r.model == LensModel::kFocus &&
-                                      solver.context().options.mesh_tolerance > 0));
+  r.draft = draft && (!drafts_.empty() || (r.model == LensModel::kFocus &&
+                                           solver.context().options.mesh_tolerance > 0));
   s.lenses = lenses;
   s.heights = r.model == LensModel::kFocus ? r.focus_log_zooms : r.lift_heights_px;
   s.model = r.model;

@@ -270,6 +270,28 @@ TEST(LensSession, DraftsOnTheirOwnGrid) {
   EXPECT_THROW(LensSession(1024, 1024, options), InvalidInput);
 }
 
+// A draft its grid cannot hold (a circle near a side whose ring folds the 24 grid: GeometricLens
+// says mesh_limited) is solved on the next draft grid, twice as fine: still a draft, the one a
+// session drafting on the 48 grid makes, coarser than the full frame.
+TEST(LensSession, ADraftItsGridCannotHoldGoesToAFinerDraftGrid) {
+  LensOptions options;
+  options.mesh = 24;
+  const std::vector<Lens> lenses = {Lens{Region::circle({92, 500}, 90), 2.5}};
+  ASSERT_TRUE(GeometricLens(1024, 1024, options).solve(lenses).mesh_limited);
+  options.mesh = 100;
+  options.draft_mesh = 24;
+  LensSession session(1024, 1024, options);
+  options.draft_mesh = 48;
+  LensSession finer(1024, 1024, options);
+  const LensResult draft = session.update(lenses, {}, true);
+  const LensResult expected = finer.update(lenses, {}, true);
+  EXPECT_TRUE(draft.draft);
+  EXPECT_TRUE(expected.draft);
+  ASSERT_EQ(draft.mesh.F.rows(), expected.mesh.F.rows());
+  EXPECT_LT(screen_gap(draft, expected), 1e-9);
+  EXPECT_LT(draft.mesh.F.rows(), session.update(lenses).mesh.F.rows() / 2);
+}
+
 // A lens moved clear of the image border is solved on its last mesh, moved with it: the same
 // triangles, every vertex shifted by the move; and the picture is a fresh solve's, on its own
 // mesh, within a tenth of a pixel (0.055 px measured; the 4x-finer criterion is 0.5 px).

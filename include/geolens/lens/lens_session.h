@@ -3,7 +3,6 @@
 // every frame.
 
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "geolens/core/solve_control.h"
@@ -36,8 +35,11 @@ class LensSession {
   /// A draft is solved on the grid of LensOptions::draft_mesh, and (focus model) on a mesh that
   /// follows the regions and footprints but is not refined where the ring bends
   /// (LensOptions::mesh_tolerance): a drag's frames, about as fast as the grid alone; its
-  /// result says `draft` where it differs from a full frame. Drafts and full frames keep what they
-  /// leave for the next apart, so a full frame between two drafts costs neither its speed.
+  /// result says `draft` where it differs from a full frame. Where a draft grid cannot hold a
+  /// lens's zoom (GeometricLens's mesh_limited), the draft is solved on a grid twice as fine, and
+  /// so on while that is coarser than LensOptions::mesh, then in full. Drafts and full frames (and
+  /// each draft grid) keep what they leave for the next apart, so a full frame between two drafts
+  /// costs neither its speed.
   LensResult update(const std::vector<Lens>& lenses, const SolveControl& control = {},
                     bool draft = false);
 
@@ -48,8 +50,11 @@ class LensSession {
 
  private:
   struct State;
+  // Level 0 a full frame, level k >= 1 a draft on drafts_[k - 1] (on lens_ without draft grids).
+  LensResult solve(const std::vector<Lens>& lenses, const SolveControl& control, size_t level);
+
   GeometricLens lens_;
-  std::optional<GeometricLens> draft_lens_;  // on LensOptions::draft_mesh where that differs
+  std::vector<GeometricLens> drafts_;  // draft grids, coarsest first (draft_options)
   std::unique_ptr<State> state_;
 };
 
