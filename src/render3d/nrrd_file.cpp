@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -224,16 +225,18 @@ bool byte_swap(const HeaderFields& h) {
   return (endian == "big") != (std::endian::native == std::endian::big);
 }
 
-/// Sets the volume's spacing from the "spacings" field ("nan" for 1).
+/// Sets the volume's spacing from the "spacings" field: three numbers, "nan" for 1.
 void read_spacings(const HeaderFields& h, const std::string& spacings, ScalarVolume& volume) {
   std::istringstream in(spacings);
+  std::string word;
   for (int k = 0; k < 3; ++k) {
-    std::string word;
     require(bool(in >> word), kFn, h.bad("spacings", "expected three spacings"));
-    const double s = word == "nan" || word == "NaN" ? 1 : std::strtod(word.c_str(), nullptr);
-    require(std::isfinite(s) && s > 0, kFn, h.bad("spacings", "a spacing that is not positive"));
-    volume.spacing[k] = s;
+    const std::optional<double> s = word == "nan" || word == "NaN" ? 1.0 : read_number(word);
+    require(s.has_value(), kFn, h.bad("spacings", "a spacing that is not a number"));
+    require(*s > 0, kFn, h.bad("spacings", "a spacing that is not positive"));
+    volume.spacing[k] = *s;
   }
+  require(!(in >> word), kFn, h.bad("spacings", "expected three spacings"));
 }
 
 /// Sets the volume's spacing from the lengths of the "space directions" field's vectors, an
@@ -250,17 +253,25 @@ void read_directions(const HeaderFields& h, const std::string& directions, Scala
     const size_t close = directions.find(')', p);
     require(p < directions.size() && directions[p] == '(' && close != std::string::npos, kFn,
             h.bad("space directions", "expected three (x,y,z) vectors"));
-    std::string inner = directions.substr(p + 1, close - p - 1);
-    for (char& c : inner)
-      if (c == ',') c = ' ';
-    std::istringstream in(inner);
-    double length2 = 0, c = 0;
-    while (in >> c) length2 += c * c;
+    // Its components, comma-separated numbers (spaces around them allowed).
+    std::istringstream in(directions.substr(p + 1, close - p - 1));
+    double length2 = 0;
+    for (std::string c; std::getline(in, c, ',');) {
+      const size_t first = c.find_first_not_of(' '), last = c.find_last_not_of(' ');
+      const std::optional<double> x = first == std::string::npos
+                                          ? std::nullopt
+                                          : read_number(c.substr(first, last - first + 1));
+      require(x.has_value(), kFn,
+              h.bad("space directions", "a vector component that is not a number"));
+      length2 += *x * *x;
+    }
     const double s = std::sqrt(length2);
     require(std::isfinite(s) && s > 0, kFn, h.bad("space directions", "a zero direction"));
     volume.spacing[k] = s;
     p = close + 1;
   }
+  require(directions.find_first_not_of(' ', p) == std::string::npos, kFn,
+          h.bad("space directions", "expected three (x,y,z) vectors"));
 }
 
 /// The bytes the samples are read from: the header's text (attached data) or a detached file's.
@@ -280,6 +291,12 @@ Data find_data(const Header& header, const std::string& path, const std::string&
   data.start = header.data_start;
   data.where = where;
   if (!detached_name.empty()) {
+    // The name comes from the file: none of its characters may reach the terminal as a control.
+    require(std::none_of(detached_name.begin(), detached_name.end(),
+                         [](unsigned char c) { return c < 0x20 || c == 0x7f; }),
+            kFn,
+            where + "data file '" + quoted_line(detached_name) +
+                "': a file name with control characters");
     const std::string data_path = resolved_data_path(path, detached_name);
     std::error_code error;
     require(std::filesystem::exists(data_path, error), kFn,

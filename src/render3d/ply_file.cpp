@@ -111,6 +111,12 @@ struct Header {
   size_t body_start = 0;
 };
 
+/// Whether `in` has nothing left but spaces (a header line's words all read).
+bool read_whole(std::istringstream& in) {
+  std::string rest;
+  return !(in >> rest);
+}
+
 /// The format of a "format NAME VERSION" line, `in` past its keyword; `bad` starts its messages.
 Format read_format(std::istringstream& in, const std::string& bad) {
   std::string name, version;
@@ -125,13 +131,14 @@ Format read_format(std::istringstream& in, const std::string& bad) {
   else
     require(false, kFn, bad + "unknown format '" + quoted_line(name) + "'");
   require(version == "1.0", kFn, bad + "unknown version '" + quoted_line(version) + "'");
+  require(read_whole(in), kFn, bad + "expected 'format NAME 1.0'");
   return format;
 }
 
 /// The element of an "element NAME COUNT" line, `in` past its keyword.
 Element read_element(std::istringstream& in, const std::string& bad) {
   Element element;
-  require(bool(in >> element.name >> element.count) && element.count >= 0, kFn,
+  require(bool(in >> element.name >> element.count) && element.count >= 0 && read_whole(in), kFn,
           bad + "expected 'element NAME COUNT'");
   return element;
 }
@@ -156,6 +163,7 @@ Property read_property(std::istringstream& in, const std::string& bad) {
     require(property.type.has_value(), kFn, bad + "unknown type '" + quoted_line(type) + "'");
   }
   require(!property.name.empty(), kFn, bad + "the property has no name");
+  require(read_whole(in), kFn, bad + "words after the property's name");
   return property;
 }
 

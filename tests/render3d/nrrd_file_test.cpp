@@ -211,6 +211,13 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
       {replaced("type: uint8", "type: short"), "the header has no 'endian' field"},
       {small_header("spacings: 1 -1 1\n") + data, "(spacings: 1 -1 1): a spacing that is not"},
       {small_header("space directions: (0,0,0) (1,0,0) (0,1,0)\n") + data, "a zero direction"},
+      // Numbers are read whole: '2x' is not 2, nor is a fourth spacing or vector ignored.
+      {small_header("spacings: 1 2x 1\n") + data, "(spacings: 1 2x 1): a spacing that is not a"},
+      {small_header("spacings: 1 1 1 7\n") + data, "(spacings: 1 1 1 7): expected three"},
+      {small_header("space directions: (1,0,0) (0,1y,0) (0,0,1)\n") + data,
+       "a vector component that is not a number"},
+      {small_header("space directions: (1,0,0) (0,1,0) (0,0,1) (1,1,1)\n") + data,
+       "expected three (x,y,z) vectors"},
       {good.substr(0, good.size() - 5),
        "the header claims 3 x 2 x 2 uint8 voxels (12 bytes), the data holds 7 bytes"},
       {small_header("byte skip: 3\n") + data, "the data holds 9 bytes"},
@@ -222,6 +229,8 @@ TEST_F(NrrdFile, RefusesBadHeadersAndShortDataNamingTheFileAndTheLine) {
        "header line 5 'sizes\\x1b[31m 3 2 2' is not 'field: value'"},
       {replaced("type: uint8", "type: \x1b[31muint8"),
        "header line 3 (type: \\x1b[31muint8): unknown type"},
+      {small_header("data file: a\x1b[31m.raw\n"),
+       "data file 'a\\x1b[31m.raw': a file name with control characters"},
   };
   int i = 0;
   for (const auto& [bytes, what] : cases) {

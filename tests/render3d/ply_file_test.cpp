@@ -196,6 +196,16 @@ TEST_F(PlyFile, RefusesBadHeadersNamingTheFileAndTheLine) {
       {ascii + vertex + "element face 1\nproperty list float int vertex_indices\n" + rows,
        "unknown list types"},
       {ascii + vertex + "colour 3\n" + face + rows, "unknown keyword 'colour'"},
+      // A line's words are read whole: no count '3x' read as 3, no words left over.
+      {ascii + "element vertex 3x\nproperty float x\nproperty float y\nproperty float z\n" + face +
+           rows,
+       "header line 3 'element vertex 3x': expected 'element NAME COUNT'"},
+      {ascii + vertex + "element face 1 2\nproperty list uchar int vertex_indices\n" + rows,
+       "header line 7 'element face 1 2': expected 'element NAME COUNT'"},
+      {ascii + vertex + "property float w extra\n" + face + rows,
+       "header line 7 'property float w extra': words after the property's name"},
+      {"ply\nformat ascii 1.0 x\n" + vertex + face + rows,
+       "header line 2 'format ascii 1.0 x': expected 'format NAME 1.0'"},
       {ascii + "element vertex 3\nproperty float x\nproperty float y\n" + face +
            "end_header\n0 0\n1 0\n0 1\n3 0 1 2\n",
        "the vertex element lacks x, y or z"},
