@@ -100,7 +100,8 @@ export interface LensOptions {
   mesh_tolerance?: Numeric;
   /**
    * Drafts ({@link Session.update} with `draft`) on a grid of this many vertices along the long
-   * side: 0 (the default: `mesh`) or an integer in [4, 1000].
+   * side: 0 (the default: `mesh`) or an integer in [4, 1000]. Where it cannot hold a lens's zoom,
+   * the draft is solved on a grid twice as fine (while coarser than `mesh`), then in full.
    */
   draft_mesh?: Numeric;
   /**

@@ -15,12 +15,13 @@
 //
 //   node bench/web/view_bench.mjs [--runs 2] [--frames 300] [--no-demo] [--no-profile]
 //                                 [--unthrottled] [--draft-mesh N] [--only 1280|demo]
-//                                 [--worker] [--json out.json]
+//                                 [--worker] [--floor-mip nearest] [--json out.json]
 //
 // --unthrottled launches chromium with --disable-gpu-vsync --disable-frame-rate-limit, so that
 // frames follow as fast as they are made instead of at 60 Hz; --draft-mesh sets the view's
-// draftMesh option (its drafts' grid, 50 by default) in the lens runs; --worker adds runs of the
-// view's opt-in worker mode (the solve in a Web Worker) beside the default, page-thread one.
+// draftMesh option (its drafts' grid, 30 by default) in the lens runs; --worker adds runs of the
+// view's opt-in worker mode (the solve in a Web Worker) beside the default, page-thread one;
+// --floor-mip nearest draws the floor with the drafts' sampling (the nearest mipmap level).
 
 import { readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
@@ -41,6 +42,7 @@ const frameCount = Number(option('--frames', 300));
 const unthrottled = args.includes('--unthrottled');
 const jsonOut = option('--json', null);
 const draftMesh = option('--draft-mesh', null);
+const floorMip = option('--floor-mip', null); // 'nearest': the floor samples as drafts do
 const only = option('--only', null); // '1280' or 'demo': one of the two configurations
 const withWorker = args.includes('--worker');
 
@@ -241,6 +243,7 @@ async function gpuAlone(page) {
     for (const name of names) {
       const before = chromiumCpu();
       const timed = await page.evaluate((n) => window.__bench.gpuTime(n), name);
+      if (!timed) continue;
       const spent = cpuSpent(before, chromiumCpu());
       ms[name] = timed.ms;
       cpu[name] = (spent.renderer + spent.gpu) / timed.count;
@@ -305,7 +308,8 @@ try {
     const loads = [];
     for (let run = 0; run < runs; ++run) {
       // A floor run, then each lens kind's: adjacent in time, they share the machine's load.
-      const floor = await runPage(browser, server.url, `mode=floor&${config.query}`);
+      const floor = await runPage(browser, server.url, `mode=floor&${config.query}` +
+        (floorMip ? `&floormip=${floorMip}` : ''));
       floors.push({ ...floorFigures(floor.result), cpu: perFrame(floor.cpu) });
       loads.push(floor.load);
       for (const kind of kinds) {
@@ -431,7 +435,7 @@ for (const { config, steps, gpus } of breakdowns) {
   const names = {
     input: 'input: the pointermove handler',
     update: 'solve in wasm (session.update, draft)',
-    solveJs: 'solve in JS: shape distortion, meshVertices, boundary points',
+    solveJs: 'solve in JS: shape distortion, gpuMesh, boundary points',
     forward: 'outline points (session.forward)',
     upload: 'mesh upload (bufferData)',
     meshDraw: 'mesh draw calls',
@@ -455,7 +459,7 @@ for (const { config, steps, gpus } of breakdowns) {
   console.log('| draw | draft: wall | draft: CPU | full: wall | full: CPU |');
   console.log('|---|---:|---:|---:|---:|');
   console.log(`| (vertices drawn, 3 a triangle; in warped triangles) | ${g.draft.vertices}; ` +
-    `${g.draft.warped} | | ${g.full.vertices}; ${g.full.warped} | |`);
+    `${g.draft.warped ?? '—'} | | ${g.full.vertices}; ${g.full.warped} | |`);
   for (const name of Object.keys(g.full.ms)) {
     console.log(`| ${name} | ${fixed(g.draft.ms[name], 1)} | ${fixed(g.draft.cpu[name], 1)} | ` +
       `${fixed(g.full.ms[name], 1)} | ${fixed(g.full.cpu[name], 1)} |`);

@@ -15,7 +15,9 @@
 // generated picture of picture=WxH, by default the canvas's size), lens=CX,CY,R,ZOOM (source
 // pixels; the picture's centre, r 150, zoom 2), frames=300, warmup=30 (a first drag, not
 // recorded), mesh=100 (the view's full mesh), draftmesh=N (the view's draftMesh, else its
-// default, 50), pointer=mouse, worker=1 (the view's opt-in worker mode: the solve in a Worker).
+// default, 30), pointer=mouse, worker=1 (the view's opt-in worker mode: the solve in a Worker),
+// floormip=nearest (the floor samples the nearest mipmap level, as the view's drafts do, instead
+// of blending two, as its frames at rest do).
 // window.__bench: {ready: Promise, info(), warm() (the warm-up: a first drag, or floor frames),
 // run(): Promise<result> (the measured frames; result: per frame figures), and in mode=lens
 // gpuNames(), gpuMesh('draft'|'full'), gpuTime(name, budget, least): the draws alone, synced,
@@ -36,6 +38,8 @@ const mesh = Number(params.get('mesh') || 100);
 const draftMesh = params.has('draftmesh') ? Number(params.get('draftmesh')) : undefined;
 const pointerType = params.get('pointer') || 'mouse';
 const useWorker = params.get('worker') === '1';
+const floorMinFilter = params.get('floormip') === 'nearest' ? 'LINEAR_MIPMAP_NEAREST'
+  : 'LINEAR_MIPMAP_LINEAR';
 
 const canvas = document.getElementById('bench');
 const dpr = window.devicePixelRatio || 1;
@@ -173,7 +177,7 @@ function floorSetup(picture) {
   gl.vertexAttribPointer(corner, 2, gl.FLOAT, false, 0, 0);
   const texture = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl[floorMinFilter]);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
@@ -428,7 +432,11 @@ async function runLens(view) {
 // per-pixel affine map and textureLod, and its outlines), the mesh alone, the same mesh with
 // texture coordinates interpolated between its vertices (a plain texture() lookup), the floor's
 // quad, the quad with only the triangles that move something drawn over it, and a clear. For the
-// draft mesh (a drag's) and the full one (at rest).
+// draft mesh (a drag's) and the full one (at rest). The view draws a draft with interpolated
+// texture coordinates already (its own indexed vertices, view.js's draftVertices): the two
+// variants made from the exact mesh's vertices (EXACT_ONLY) are not drawn for it.
+const EXACT_ONLY = new Set(['mesh, interpolated texcoords',
+  'floor quad + warped triangles (view shader)']);
 
 const INTERPOLATED_VERTEX = `#version 300 es
 in vec2 a_position;
@@ -491,7 +499,7 @@ function gpuVariants(view) {
   let warpedFor = null;
   const warped = { count: 0, of: 0 };
   const buildWarped = () => {
-    if (warpedFor === view._mesh) return;
+    if (warpedFor === view._mesh || view._mesh.indices) return;
     warpedFor = view._mesh;
     const v = view._mesh.vertices, F = 11, keep = [];
     for (let t = 0; t < view._mesh.count; t += 3) {
@@ -594,13 +602,16 @@ async function gpuMesh(view, which) {
     view.setLens(0, { cx: view.lenses[0].cx });
     await view.idle();
   }
-  variants['floor quad + warped triangles (view shader)']();
-  return { vertices: view._mesh.count, warped: variants.warped.count, draft: view.frame.draft };
+  if (!view._mesh.indices) variants['floor quad + warped triangles (view shader)']();
+  return { vertices: view._mesh.count, warped: view._mesh.indices ? null : variants.warped.count,
+    draft: view.frame.draft };
 }
 
 // Variant `name` drawn once, then again until `budget` ms have passed (at least `least` times),
-// each synced by a 1 px readback: {ms: the median of those after the first, count: all draws}.
+// each synced by a 1 px readback: {ms: the median of those after the first, count: all draws};
+// null for a variant not drawn for the view's mesh (EXACT_ONLY on a draft).
 function gpuTime(view, name, budget, least) {
+  if (view._mesh.indices && EXACT_ONLY.has(name)) return null;
   const gl = view._gl, times = [], begin = now();
   for (let k = 0; k <= least || now() - begin < budget; ++k) {
     const start = now();

@@ -11,14 +11,14 @@
 //   {type: 'session', id}                          the session is made
 //   {type: 'frame', id, positions, texcoords (Float64Array), triangles (Uint32Array), lenses,
 //    warnings, draft, model, vertexCount, triangleCount, solveMs, outlines (Float64Array each),
-//    mesh: {vertices: Float32Array, count} (the GPU's copy, view.js's meshVertices), shape:
-//    {mean, max, flipped} (shapeDistortion)}: copies of the frame, their buffers transferred, and
-//    what the page would otherwise compute from them on its own thread
+//    mesh: {vertices: Float32Array, count[, indices: Uint32Array]} (the GPU's copy, view.js's
+//    gpuMesh), shape: {mean, max, flipped} (shapeDistortion)}: copies of the frame, their buffers
+//    transferred, and what the page would otherwise compute from them on its own thread
 //   {type: 'error', id, request: 'session' | 'update', error: {name, message}}: the engine
 //    refused; the session keeps its last frame
 
 import createGeolens from '../dist/geolens.mjs';
-import { meshVertices, shapeDistortion } from './view.js';
+import { gpuMesh, shapeDistortion } from './view.js';
 
 let engine = null;
 let session = null;
@@ -70,7 +70,7 @@ async function handle(message) {
       const texcoords = frame.texcoords.slice();
       const triangles = frame.triangles.slice();
       const outlines = (message.outlines || []).map((points) => session.forward(points));
-      const mesh = meshVertices(positions, texcoords, triangles);
+      const mesh = gpuMesh({ positions, texcoords, triangles, draft: frame.draft });
       const shape = shapeDistortion(texcoords, positions, triangles);
       const reply = {
         type: 'frame',
@@ -90,6 +90,7 @@ async function handle(message) {
         shape,
       };
       const transfer = [positions.buffer, texcoords.buffer, triangles.buffer, mesh.vertices.buffer,
+        ...(mesh.indices ? [mesh.indices.buffer] : []),
         ...outlines.map((o) => o.buffer)];
       self.postMessage(reply, transfer);
     } catch (error) {

@@ -105,7 +105,7 @@ export interface GeolensViewOptions {
   model?: string;
   /** Engine: grid vertices along the long side (100). */
   mesh?: number;
-  /** Engine: the drafts' grid (50). */
+  /** Engine: the drafts' grid (30; 60 where that cannot hold a lens's zoom). */
   draftMesh?: number;
   /** Engine: the focus model's refinement tolerance, output pixels (0.2). */
   meshTolerance?: number;

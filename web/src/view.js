@@ -52,7 +52,7 @@ const VIEW_DEFAULTS = {
   interactive: true, // pointer, wheel and key handling
   onFrame: null, // called with each frame's figures, as the 'frame' event's detail
 };
-const ENGINE_DEFAULTS = { mesh: 100, draft_mesh: 50 };
+const ENGINE_DEFAULTS = { mesh: 100, draft_mesh: 30 };
 
 // The warp is drawn triangle by triangle with each triangle's own affine map from frame to source
 // (flat: the same for all its pixels), evaluated at each pixel's centre, rather than texture
@@ -102,6 +102,32 @@ void main() {
   color = textureLod(u_picture, source / u_size, lod);
 }`;
 const MESH_FLOATS = 11; // per vertex: position 2, origin 2, source 2, jacobian 4, sigma 1
+
+// Drafts (while a lens moves) are drawn the plain way: the engine's vertices, indexed, their
+// texture coordinates interpolated, the level of detail the GPU's own. Under SwiftShader that is
+// 20-30 % less per draw than the per-pixel map (bench/web/README.md); the frame at rest keeps the
+// exact sampling.
+const DRAFT_VERTEX = `#version 300 es
+in vec2 a_position;
+in vec2 a_source;
+uniform vec2 u_scale;
+uniform vec2 u_offset;
+uniform vec2 u_size;
+out vec2 v_texcoord;
+void main() {
+  v_texcoord = a_source / u_size;
+  gl_Position = vec4(a_position * u_scale + u_offset, 0.0, 1.0);
+}`;
+
+const DRAFT_FRAGMENT = `#version 300 es
+precision highp float;
+uniform sampler2D u_picture;
+in vec2 v_texcoord;
+out vec4 color;
+void main() {
+  color = texture(u_picture, v_texcoord);
+}`;
+const DRAFT_FLOATS = 4; // per vertex: position 2, source 2
 
 // Strokes: quads around each segment, in device pixels, their edges smoothed by the distance
 // across the line (v_across, pixels from its middle).
@@ -276,7 +302,7 @@ export class GeolensView extends EventTarget {
     this._height = 0;
     this._session = null;
     this._frame = null; // the last frame's figures
-    this._mesh = null; // its warp as the GPU draws it: {vertices, count} (meshVertices)
+    this._mesh = null; // its warp as the GPU draws it: {vertices, count[, indices]} (gpuMesh)
     this._outlines = []; // per lens: frame points of its boundary (NaN breaks the line)
     this._solveWanted = false;
     this._moving = false; // a lens is being moved: solve drafts
@@ -511,7 +537,7 @@ export class GeolensView extends EventTarget {
    * Sets options. The view's: restDelay (ms, 150), outlines (true), background ([r, g, b, a] in
    * [0, 1]), autoResize (true), interactive (true), onFrame (a callback). Every other is the
    * engine's, camelCase or as the library names it: model ('focus', 'lift', 'field', 'auto'),
-   * mesh (100), draftMesh (50), meshTolerance, ...; changing them starts a new session (the
+   * mesh (100), draftMesh (30), meshTolerance, ...; changing them starts a new session (the
    * lenses stay).
    * @param {object} options
    */
@@ -807,7 +833,7 @@ export class GeolensView extends EventTarget {
       frame.triangles);
     // The views die with the next update: the GPU's copy is made now (and kept for a lost
     // context).
-    this._mesh = frame.mesh || meshVertices(frame.positions, frame.texcoords, frame.triangles);
+    this._mesh = frame.mesh || gpuMesh(frame);
     this._uploadMesh();
     this._good = lenses;
     this._outlines = outlines();
@@ -944,8 +970,9 @@ export class GeolensView extends EventTarget {
     if (!gl) throw new Error('GeolensView: this browser has no WebGL2');
     this._gl = gl;
     this._meshProgram = compileProgram(gl, MESH_VERTEX, MESH_FRAGMENT);
+    this._draftProgram = compileProgram(gl, DRAFT_VERTEX, DRAFT_FRAGMENT);
     this._strokeProgram = compileProgram(gl, STROKE_VERTEX, STROKE_FRAGMENT);
-    const mp = this._meshProgram, sp = this._strokeProgram;
+    const mp = this._meshProgram, dp = this._draftProgram, sp = this._strokeProgram;
     this._loc = {
       scale: gl.getUniformLocation(mp, 'u_scale'),
       offset: gl.getUniformLocation(mp, 'u_offset'),
@@ -954,6 +981,10 @@ export class GeolensView extends EventTarget {
       placeScale: gl.getUniformLocation(mp, 'u_placeScale'),
       placeOffset: gl.getUniformLocation(mp, 'u_placeOffset'),
       height: gl.getUniformLocation(mp, 'u_height'),
+      draftScale: gl.getUniformLocation(dp, 'u_scale'),
+      draftOffset: gl.getUniformLocation(dp, 'u_offset'),
+      draftSize: gl.getUniformLocation(dp, 'u_size'),
+      draftPicture: gl.getUniformLocation(dp, 'u_picture'),
       strokePosition: gl.getAttribLocation(sp, 'a_position'),
       strokeAcross: gl.getAttribLocation(sp, 'a_across'),
       viewport: gl.getUniformLocation(sp, 'u_viewport'),
@@ -974,6 +1005,23 @@ export class GeolensView extends EventTarget {
       gl.vertexAttribPointer(location, size, gl.FLOAT, false, 4 * MESH_FLOATS, 4 * offset);
       offset += size;
     }
+    this._draftBuffer = gl.createBuffer();
+    this._draftIndexBuffer = gl.createBuffer();
+    this._draftVao = gl.createVertexArray();
+    gl.bindVertexArray(this._draftVao);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this._draftBuffer);
+    for (const [name, offset] of [['a_position', 0], ['a_source', 2]]) {
+      const location = gl.getAttribLocation(dp, name);
+      gl.enableVertexAttribArray(location);
+      gl.vertexAttribPointer(location, 2, gl.FLOAT, false, 4 * DRAFT_FLOATS, 4 * offset);
+    }
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this._draftIndexBuffer);
+    // Drafts sample the nearest mipmap level, not a blend of two (where the ring compresses).
+    this._draftSampler = gl.createSampler();
+    gl.samplerParameteri(this._draftSampler, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_NEAREST);
+    gl.samplerParameteri(this._draftSampler, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+    gl.samplerParameteri(this._draftSampler, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.samplerParameteri(this._draftSampler, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
     this._strokeVao = gl.createVertexArray();
     gl.bindVertexArray(this._strokeVao);
     gl.bindBuffer(gl.ARRAY_BUFFER, this._strokeBuffer);
@@ -1014,6 +1062,14 @@ export class GeolensView extends EventTarget {
   _uploadMesh() {
     const gl = this._gl, mesh = this._mesh;
     if (!mesh || gl.isContextLost()) return;
+    if (mesh.indices) {
+      gl.bindVertexArray(this._draftVao);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this._draftBuffer);
+      gl.bufferData(gl.ARRAY_BUFFER, mesh.vertices, gl.DYNAMIC_DRAW);
+      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.DYNAMIC_DRAW);
+      gl.bindVertexArray(null);
+      return;
+    }
     gl.bindBuffer(gl.ARRAY_BUFFER, this._meshBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, mesh.vertices, gl.DYNAMIC_DRAW);
   }
@@ -1043,6 +1099,23 @@ export class GeolensView extends EventTarget {
     gl.clearColor(r * a, g * a, b * a, a);
     gl.clear(gl.COLOR_BUFFER_BIT);
     if (!this._mesh || !this._source) return;
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, this._texture);
+    const mesh = this._mesh, loc = this._loc;
+    if (mesh.indices) {
+      gl.useProgram(this._draftProgram);
+      gl.uniform2f(loc.draftScale, (2 * scale) / W, (-2 * scale) / H);
+      gl.uniform2f(loc.draftOffset, (2 * ox) / W - 1, 1 - (2 * oy) / H);
+      gl.uniform2f(loc.draftSize, this._width, this._height);
+      gl.uniform1i(loc.draftPicture, 0);
+      gl.bindSampler(0, this._draftSampler);
+      gl.bindVertexArray(this._draftVao);
+      gl.drawElements(gl.TRIANGLES, mesh.count, gl.UNSIGNED_INT, 0);
+      gl.bindVertexArray(null);
+      gl.bindSampler(0, null);
+      this._drawOutlines(scale, ox, oy, W, H);
+      return;
+    }
     gl.useProgram(this._meshProgram);
     gl.uniform2f(this._loc.scale, (2 * scale) / W, (-2 * scale) / H);
     gl.uniform2f(this._loc.offset, (2 * ox) / W - 1, 1 - (2 * oy) / H);
@@ -1050,8 +1123,6 @@ export class GeolensView extends EventTarget {
     gl.uniform1f(this._loc.placeScale, scale);
     gl.uniform2f(this._loc.placeOffset, ox, oy);
     gl.uniform1f(this._loc.height, H);
-    gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, this._texture);
     gl.uniform1i(this._loc.picture, 0);
     gl.bindVertexArray(this._meshVao);
     gl.drawArrays(gl.TRIANGLES, 0, this._mesh.count);
@@ -1405,7 +1476,7 @@ export class GeolensView extends EventTarget {
   }
 }
 
-// meshVertices and shapeDistortion are exported for solver_worker.js (which makes both off the
+// gpuMesh and shapeDistortion are exported for solver_worker.js (which makes both off the
 // page's thread), not as the package's API.
 
 // The page's stand-in for the worker's session (worker mode): forward and inverse from the last
@@ -1426,6 +1497,27 @@ class LocatedSession {
   dispose() {
     this.locator = null;
   }
+}
+
+// The GPU's copy of a frame's warp: a draft's (draftVertices), else the exact one (meshVertices).
+export function gpuMesh(frame) {
+  const { positions, texcoords, triangles } = frame;
+  return frame.draft ? draftVertices(positions, texcoords, triangles)
+    : meshVertices(positions, texcoords, triangles);
+}
+
+// A draft's copy for the GPU: per vertex its frame position and source point (4 floats), and the
+// triangles' vertex indices, drawn with interpolated texture coordinates.
+export function draftVertices(positions, texcoords, triangles) {
+  const n = positions.length / 2;
+  const vertices = new Float32Array(n * DRAFT_FLOATS);
+  for (let i = 0, k = 0; i < 2 * n; i += 2, k += DRAFT_FLOATS) {
+    vertices[k] = positions[i];
+    vertices[k + 1] = positions[i + 1];
+    vertices[k + 2] = texcoords[i];
+    vertices[k + 3] = texcoords[i + 1];
+  }
+  return { vertices, indices: new Uint32Array(triangles), count: triangles.length };
 }
 
 // The GPU's copy of a warp: three vertices per triangle (positions: frame pixels), each with the
