@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "geolens/geometry/grid.h"
 #include "geolens/lens/geometric_lens.h"
@@ -112,10 +113,20 @@ LensModel model_argument(std::int64_t argument) {
 }
 bool draft_argument(std::int64_t argument) { return argument == 2; }
 
-void BM_UpdateMoved(benchmark::State& state) {
+// The sessions' options: the model and grid given; FlattenOptions::threads from the environment's
+// GEOLENS_BENCH_THREADS where set (1: the calling thread only, as the browser's build runs), else
+// one thread per hardware thread.
+LensOptions session_options(std::int64_t mesh, std::int64_t model) {
   LensOptions o;
-  o.model = model_argument(state.range(2));
-  o.mesh = int(state.range(0));
+  o.model = model_argument(model);
+  o.mesh = int(mesh);
+  if (const char* threads = std::getenv("GEOLENS_BENCH_THREADS"))
+    o.flatten.threads = std::atoi(threads);
+  return o;
+}
+
+void BM_UpdateMoved(benchmark::State& state) {
+  const LensOptions o = session_options(state.range(0), state.range(2));
   const double step = double(state.range(1));
   const bool draft = draft_argument(state.range(2));
   LensSession lens(1024, 1024, o);
@@ -140,10 +151,7 @@ void BM_UpdateMoved(benchmark::State& state) {
 void BM_UpdateMovedStar(benchmark::State& state) {
   const std::int64_t model = state.range(1) % 3;
   const bool translate = state.range(1) >= 3;
-  LensOptions o;
-  o.model = model_argument(model);
-  o.mesh = int(state.range(0));
-  LensSession lens(1024, 1024, o);
+  LensSession lens(1024, 1024, session_options(state.range(0), model));
   std::vector<Eigen::Vector2d> outline;
   for (int k = 0; k < 10; ++k) {
     const double r = k % 2 == 0 ? 120 : 0.382 * 120, a = M_PI / 2 + k * M_PI / 5;
@@ -170,9 +178,7 @@ void BM_UpdateMovedStar(benchmark::State& state) {
 
 // First placement: a new GeometricLens, nothing cached, calibrated from the first guess.
 void BM_UpdateFirst(benchmark::State& state) {
-  LensOptions o;
-  o.model = model_argument(state.range(1));
-  o.mesh = int(state.range(0));
+  const LensOptions o = session_options(state.range(0), state.range(1));
   for (auto _ : state) {
     LensSession lens(1024, 1024, o);
     benchmark::DoNotOptimize(lens.update({Lens{Region::circle({512, 512}, 150)}}));

@@ -108,8 +108,12 @@ if (nativeBench) {
   const filter = cases.filter((c) => c.native).map((c) => `^${c.native}$`).join('|');
   const command = [nativeBench, `--benchmark_filter=${filter}`, '--benchmark_repetitions=10',
                    '--benchmark_report_aggregates_only=true', '--benchmark_format=json'];
-  const output = pin ? execFileSync('taskset', ['-c', '0', ...command], { encoding: 'utf8' })
-                     : execFileSync(command[0], command.slice(1), { encoding: 'utf8' });
+  // Pinned: one core and the library's pool of one thread (GEOLENS_BENCH_THREADS=1), as the
+  // wasm build runs; a pool of two on one core would add their switching to the wall time.
+  const output = pin
+    ? execFileSync('taskset', ['-c', '0', ...command],
+      { encoding: 'utf8', env: { ...process.env, GEOLENS_BENCH_THREADS: '1' } })
+    : execFileSync(command[0], command.slice(1), { encoding: 'utf8' });
   // Google Benchmark writes a counter's undefined spread as a bare NaN, which is not JSON.
   const json = output.replace(/:\s*-?(?:NaN|nan|inf|Infinity)\b/g, ': null');
   for (const b of JSON.parse(json).benchmarks) {
