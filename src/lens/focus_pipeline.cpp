@@ -28,6 +28,10 @@ constexpr double kMovedMeshDrift = 1.5;
 constexpr double kShortfall = 1e-3, kRounding = 1e-9;
 bool short_of(double fit, double zoom, double by) { return fit < zoom * (1 - by); }
 
+// How much finer than the mesh option's the grid may be made for small circles (grid_vertices):
+// at most 4 times the vertices.
+constexpr int kFinestGrid = 2;
+
 // The fit's search: rounds (a group lowered may split into groups that share room differently)
 // of largest_fitting_log_zoom's halvings of the group's log zoom.
 constexpr int kFitRounds = 3;
@@ -88,12 +92,33 @@ Eigen::AlignedBox2d FocusPipeline::solved_box(const std::vector<Lens>& lenses) c
   return box.intersection(image);
 }
 
+int FocusPipeline::grid_vertices(const Eigen::AlignedBox2d& box,
+                                 const std::vector<Lens>& lenses) const {
+  // A circle of under 2 cells is not followed by the mesh, and its band of 1.4 cells holds its
+  // footprint's edge too close to fit any zoom: an r 15 circle at zoom 3 beside an r 200 one 780
+  // px away on a 1024 px image (10 px cells) was not magnified at all, though alone it got 3.
+  const int mesh = c_.options.mesh;
+  const double side = box.sizes().maxCoeff();
+  int vertices = mesh;
+  for (const Lens& lens : lenses) {
+    if (!lens.region.circle()) continue;
+    const double cells = std::ceil(2 * side / lens.region.size() * (1 + 1e-9));
+    vertices = std::max(vertices, int(std::min(cells, double(kFinestGrid * (mesh - 1)))) + 1);
+  }
+  return vertices;
+}
+
+double FocusPipeline::cell_size(const Eigen::AlignedBox2d& box,
+                                const std::vector<Lens>& lenses) const {
+  return box.sizes().maxCoeff() / (grid_vertices(box, lenses) - 1);
+}
+
 BaseMesh FocusPipeline::base_mesh(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box,
                                   bool draft, std::vector<int>* on_curve) const {
   box = solved_box(lenses);
-  Grid patch = make_grid(box.sizes().x(), box.sizes().y(), c_.options.mesh);
+  Grid patch = make_grid(box.sizes().x(), box.sizes().y(), grid_vertices(box, lenses));
   patch.V.rowwise() += box.min().transpose();
-  const double cell = cell_size(box);
+  const double cell = cell_size(box, lenses);
   if (!meshed_along_regions(lenses, cell)) {
     if (on_curve) on_curve->assign(size_t(patch.V.rows()), -1);
     return BaseMesh(patch);
@@ -143,12 +168,12 @@ std::optional<BaseMesh> FocusPipeline::moved_mesh(const MeshMemo& memo,
     mesh.V.rowwise() += (box.min() - memo.box.min()).transpose();
     return mesh;
   }
-  const double cell = cell_size(box);
+  const double cell = cell_size(box, lenses);
   const double shift = (lenses[0].region.peak() - memo.lenses[0].region.peak()).norm();
   if (memo.drift + shift > kMovedMeshDrift * cell) return std::nullopt;
-  std::optional<Eigen::MatrixX2d> V =
-      moved_focus_mesh(memo.mesh, memo.on_curve, memo.lenses, memo.box, cell_size(memo.box), lenses,
-                       box, cell, c_.width, c_.height, *c_.pool);
+  std::optional<Eigen::MatrixX2d> V = moved_focus_mesh(
+      memo.mesh, memo.on_curve, memo.lenses, memo.box, cell_size(memo.box, memo.lenses), lenses,
+      box, cell, c_.width, c_.height, *c_.pool);
   if (!V) return std::nullopt;
   mesh.V = std::move(*V);
   return mesh;
@@ -161,7 +186,7 @@ std::vector<Lens> FocusPipeline::fitting(const std::vector<Lens>& lenses,
   // footprint of a lens that has no ratio of its own follows its zoom (footprint_ratio).
   auto fits_of = [&](const std::vector<Lens>& at, std::vector<std::string>* why,
                      const std::vector<size_t>* only = nullptr) {
-    const double cell = cell_size(solved_box(at));
+    const double cell = cell_size(solved_box(at), at);
     return fitting_zooms(at, cell, focus_band(at, cell), width, height, why, only);
   };
   // Lenses near each other first share the room between them (or are magnified as one where
@@ -171,7 +196,7 @@ std::vector<Lens> FocusPipeline::fitting(const std::vector<Lens>& lenses,
   std::vector<Lens> out = shared_room_zooms(
       lenses,
       [&](const std::vector<Lens>& at) {
-        const double cell = cell_size(solved_box(at));
+        const double cell = cell_size(solved_box(at), at);
         return FitMesh{cell, focus_band(lenses, cell)};
       },
       width, height, merge, &neighbours);
@@ -267,6 +292,17 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   }
   std::vector<double>& fits = fit.zoom_fits;
   for (const Lens& lens : out) fits.push_back(lens.zoom);
+  // A circle too small for the grid to follow, even at its finest (grid_vertices), got less for
+  // it: a finer mesh fits more, and a draft is solved on a finer grid (LensSession), so that a
+  // drag does not show it unmagnified where the frame at rest magnifies it.
+  const double cell = cell_size(solved_box(out), out);
+  for (size_t k = 0; k < out.size(); ++k) {
+    if (!lenses[k].region.circle() || lenses[k].region.size() >= 2 * cell ||
+        !short_of(fits[k], lenses[k].zoom, kShortfall))
+      continue;
+    fit.mesh_limited = true;
+    fit.zoom_fit_reasons[k] = "the mesh (a finer mesh fits more)";
+  }
   // Then what the mesh of the fitted lenses, the one they are solved on, holds without folding
   // (its footprints kept, the curves the mesh follows); the last frame's mesh, moved, where the
   // lenses only moved. Last, the zooms each group is solved at are the ones reported.
@@ -293,8 +329,7 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
     }
   }
   std::vector<int> on_curve;
-  fit.mesh = base_mesh(out, fit.box, draft, &on_curve);
-  const double cell = cell_size(fit.box);
+  fit.mesh = base_mesh(out, fit.box, draft, &on_curve);  // fit.box: solved_box(out), as `cell`'s
   const std::vector<double> unfolding =
       unfolding_zooms(fit.mesh, out, cell, focus_band(out, cell), c_.width, c_.height, *c_.pool);
   if (memo)
@@ -315,7 +350,7 @@ LensResult FocusPipeline::solve_once(const Eigen::AlignedBox2d& box,
   r.box = box;
   // The focus field read as a lift (for --export-mesh): z = log zoom times the solved area's long
   // side.
-  const double cell = cell_size(box);
+  const double cell = cell_size(box, lenses);
   const double band = focus_band(lenses, cell);
   FocusField focus = focus_field(r.mesh.V, lenses, h, cell, band, c_.width, c_.height, *c_.pool);
   Lifted lifted;

@@ -32,6 +32,12 @@ class FocusPipeline final : public LensPipeline {
  private:
   // The footprints' box, within the image.
   Eigen::AlignedBox2d solved_box(const std::vector<Lens>& lenses) const;
+  // The vertices along the long side of the grid over `box` for `lenses`: the mesh option's, more
+  // where a circle is smaller than 2 cells of it (up to kFinestGrid times as fine), so that the
+  // mesh follows it (meshed_along_regions).
+  int grid_vertices(const Eigen::AlignedBox2d& box, const std::vector<Lens>& lenses) const;
+  // The side of a cell of that grid, pixels.
+  double cell_size(const Eigen::AlignedBox2d& box, const std::vector<Lens>& lenses) const;
   // The grid over the footprints' box (`box`), made to follow every region's boundary and
   // footprint's edge and, unless a draft, refined where the start bends; `on_curve` as
   // conform_mesh gives it.

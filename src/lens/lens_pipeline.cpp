@@ -36,10 +36,6 @@ double LensPipeline::ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-double LensPipeline::cell_size(const Eigen::AlignedBox2d& box) const {
-  return box.sizes().maxCoeff() / (c_.options.mesh - 1);
-}
-
 LensResult LensPipeline::calibrated(const FittedLenses& fit, const PlanarMesh& mesh,
                                     const std::vector<double>& h, SolveCache& cache,
                                     const SolveControl& control) const {

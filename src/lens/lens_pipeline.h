@@ -98,9 +98,6 @@ class LensPipeline {
  protected:
   using Clock = std::chrono::steady_clock;
   static double ms_since(Clock::time_point start);
-  /// The side of a grid cell over `box`, pixels.
-  double cell_size(const Eigen::AlignedBox2d& box) const;
-
   /// The cache's flattener refitted to `lifted` (same topology) or built anew, the cache's last
   /// flattening moved with the solved box; fills r.timings.factorize from `start`.
   void prepare_flattener(const Lifted& lifted, const FocusConstraints& constraints,

@@ -694,6 +694,39 @@ TEST(FocusLens, SmallCirclesFarApartGetTheirZoom) {
   }
 }
 
+// A small circle beside a large lens far from it: the box of both footprints sets a mesh of 10 px
+// cells, too coarse to follow the small one, so the grid is made finer for it (up to twice, 5 px
+// cells) and it gets its zoom at every radius from 11 px up, magnified exactly; below that the
+// mesh is said to limit it (it was shown unmagnified up to r 15, told "its footprint"). A
+// session's draft on the 50 grid, too coarse for it, is solved finer: a drag shows the zoom too.
+TEST(FocusLens, ASmallCircleBesideALargeLensGetsItsZoom) {
+  const GeometricLens lens(1024, 1024);
+  for (double r = 11; r <= 30; r += 1) {
+    const std::vector<Lens> lenses = {Lens{Region::circle({300, 300}, 200), 2},
+                                      Lens{Region::circle({850, 850}, r), 3}};
+    const LensResult result = lens.solve(lenses);
+    EXPECT_DOUBLE_EQ(result.zoom_fits[1], 3) << r;
+    EXPECT_TRUE(result.zoom_fit_reasons[1].empty()) << r << ": " << result.zoom_fit_reasons[1];
+    const TriangleDistortion measures = measure_triangles(result.warp);
+    EXPECT_EQ(summarize(measures).flipped, 0) << r;
+    const FocusMeasure f = measure_foci(result.warp, measures, lenses)[1];
+    EXPECT_NEAR(f.zoom, 3, 0.03) << r;
+    EXPECT_LE(f.uniformity, 1.01) << r;
+  }
+  const std::vector<Lens> tiny = {Lens{Region::circle({300, 300}, 200), 2},
+                                  Lens{Region::circle({850, 850}, 8), 3}};
+  const LensResult r = lens.solve(tiny);
+  EXPECT_LT(r.zoom_fits[1], 3);
+  EXPECT_EQ(r.zoom_fit_reasons[1], "the mesh (a finer mesh fits more)");
+  EXPECT_TRUE(r.mesh_limited);
+  LensOptions options;
+  options.draft_mesh = 50;
+  LensSession session(1024, 1024, options);
+  const std::vector<Lens> lenses = {Lens{Region::circle({300, 300}, 200), 2},
+                                    Lens{Region::circle({850, 850}, 15), 3}};
+  EXPECT_DOUBLE_EQ(session.update(lenses, {}, true).zoom_fits[1], 3);
+}
+
 // The robustness sweep: 1000 seeded setups on a 512 px image, 1 to 6 lenses of radius 5
 // to 400 px and zoom 1 to 8 anywhere (corners, borders, centre), overlapping or not. No triangle
 // flips, no focus is shrunk, and every lens that fits where it is and whose ring at the zoom
