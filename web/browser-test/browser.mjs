@@ -1,7 +1,8 @@
 // What the browser tests share: Debian's chromium launched headless through playwright-core with
-// WebGL2 on SwiftShader, the static server over the repository, and the demo page opened with its
-// console watched.
+// WebGL2 on SwiftShader, the static server over the repository, the demo page opened with its
+// console watched, and the steps of a drag of its lens.
 
+import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
 import { chromium } from 'playwright-core';
 import { serve, repoRoot } from './server.mjs';
@@ -86,4 +87,56 @@ export function pagePoint(page, x, y) {
     const rect = view.canvas.getBoundingClientRect();
     return { x: rect.left + at.x, y: rect.top + at.y };
   }, [x, y]);
+}
+
+/** The demo's first lens, in the engine's form ({kind, cx, cy, r, zoom, ...}). */
+export function firstLens(page) {
+  return page.evaluate(() => window.__geolensView.lenses[0]);
+}
+
+/** Records the view's frames (draft or full, per-lens figures) from now on in window.__frames. */
+export function recordFrames(page) {
+  return page.evaluate(() => {
+    window.__frames = [];
+    window.__geolensView.addEventListener('frame', (e) => window.__frames.push(e.detail));
+  });
+}
+
+/**
+ * Drags the demo's first lens by its centre 80 px right and 60 px up (CSS pixels) in 8 mouse
+ * moves, `framesPerMove` animation frames apart, and checks what a drag does: drafts while the
+ * button is down (at least 2: a step slower than the rest delay may show the full mesh between),
+ * the full mesh once the lens rests, the lens moved by the drag in source pixels (within 1e-6)
+ * and shown where the pointer left it (within 0.01 px).
+ * @returns {Promise<{lens: object, moved: object, frames: object[]}>} before, after, the frames
+ */
+export async function dragFirstLens(page, framesPerMove) {
+  const lens = await firstLens(page);
+  await recordFrames(page);
+  const from = await pagePoint(page, lens.cx, lens.cy);
+  const by = { x: 80, y: -60 };
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; ++k) {
+    await page.mouse.move(from.x + (by.x * k) / 8, from.y + (by.y * k) / 8);
+    for (let f = 0; f < framesPerMove; ++f) await nextFrame(page);
+  }
+  const whileDown = await page.evaluate(() => window.__frames.map((f) => f.draft));
+  await page.mouse.up();
+  await viewIdle(page);
+  const moved = await firstLens(page);
+  // The drag in source pixels: CSS pixels over the picture's scale on the canvas.
+  const expected = await page.evaluate(([dx, dy]) => {
+    const view = window.__geolensView;
+    const a = view.toFrame(0, 0), b = view.toFrame(dx, dy);
+    return { x: b.x - a.x, y: b.y - a.y };
+  }, [by.x, by.y]);
+  assert.ok(Math.abs(moved.cx - lens.cx - expected.x) < 1e-6, `cx ${lens.cx} -> ${moved.cx}`);
+  assert.ok(Math.abs(moved.cy - lens.cy - expected.y) < 1e-6, `cy ${lens.cy} -> ${moved.cy}`);
+  assert.ok(whileDown.filter((d) => d).length >= 2, `frames while down (draft?): ${whileDown}`);
+  const frames = await page.evaluate(() => window.__frames);
+  assert.equal(frames.at(-1).draft, false, 'the full mesh once the lens rests');
+  const at = await pagePoint(page, moved.cx, moved.cy);
+  assert.ok(Math.hypot(at.x - from.x - by.x, at.y - from.y - by.y) < 0.01);
+  return { lens, moved, frames };
 }
