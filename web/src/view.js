@@ -104,9 +104,10 @@ void main() {
 const MESH_FLOATS = 11; // per vertex: position 2, origin 2, source 2, jacobian 4, sigma 1
 
 // Drafts (while a lens moves) are drawn the plain way: the engine's vertices, indexed, their
-// texture coordinates interpolated, the level of detail the GPU's own. Under SwiftShader that is
-// 20-30 % less per draw than the per-pixel map (bench/web/README.md); the frame at rest keeps the
-// exact sampling.
+// texture coordinates interpolated, the nearest mipmap level of the GPU's level of detail (a
+// sampler of their own). Under SwiftShader a draft on the 30 grid then costs about what the
+// picture drawn as one quad does, less than half the per-pixel map on the 50 grid
+// (bench/web/README.md); the frame at rest keeps the exact sampling.
 const DRAFT_VERTEX = `#version 300 es
 in vec2 a_position;
 in vec2 a_source;
