@@ -153,16 +153,19 @@ void bind_image_calls(py::module_& m) {
 
   m.def(
       "load_image",
-      [](const std::string& path) {
+      [](const std::string& path, long long max_pixels) {
+        require(max_pixels >= 1, "load_image",
+                "max_pixels must be >= 1, got " + std::to_string(max_pixels));
         Image image;
         {
           py::gil_scoped_release release;
-          image = load_image(path);
+          image = load_image(path, uint64_t(max_pixels));
         }
         return to_array(std::move(image));
       },
-      py::arg("path"),
-      "A PNG or JPEG file as an H x W x C uint8 array (C: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA).");
+      py::arg("path"), py::arg("max_pixels") = kMaxImagePixels,
+      "A PNG or JPEG file as an H x W x C uint8 array (C: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA); "
+      "a file of more than max_pixels pixels (2^28 unless raised) is refused from its header.");
 
   m.def(
       "save_image",

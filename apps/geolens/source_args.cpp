@@ -1,5 +1,6 @@
 #include "source_args.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "lens_args.h"
@@ -12,6 +13,10 @@ void add_source_options(CLI::App& command, SourceArgs& a, const std::string& siz
   command.add_option("--view", a.view, "camera of a 3D input: AZ,EL in degrees");
   command.add_option("--transfer", a.transfer,
                      "transfer function of a volume input: a preset (ct, mri) or a table file");
+  command.add_option("--max-pixels", a.max_pixels,
+                     "the most pixels an image input may have (refused from its header above it; "
+                     "each takes 4 bytes or more), in [1, 2^40]; default " +
+                         std::to_string(kMaxImagePixels) + " (2^28)");
 }
 
 void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
@@ -32,6 +37,12 @@ SourceFile open_input(const std::string& input, const SourceArgs& a) {
   options.style = a.style;
   options.view = a.view;
   options.transfer = a.transfer;
+  if (!a.max_pixels.empty()) {
+    const double n = parse_number(a.max_pixels, "--max-pixels");
+    require(n >= 1 && n <= double(uint64_t(1) << 40) && n == std::floor(n), "--max-pixels",
+            "must be a whole number in [1, 2^40], got '" + a.max_pixels + "'");
+    options.max_pixels = uint64_t(n);
+  }
   return open_source(input, options);
 }
 

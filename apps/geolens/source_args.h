@@ -13,13 +13,15 @@ namespace geolens::cli {
 
 /// The raw command-line values of the source options.
 struct SourceArgs {
-  std::string size;      ///< --size WxH; "" = the source's frame
-  std::string style;     ///< --style FILE, a vector map's
-  std::string view;      ///< --view AZ,EL, a 3D scene's camera
-  std::string transfer;  ///< --transfer NAME|FILE, a volume's
+  std::string size;        ///< --size WxH; "" = the source's frame
+  std::string style;       ///< --style FILE, a vector map's
+  std::string view;        ///< --view AZ,EL, a 3D scene's camera
+  std::string transfer;    ///< --transfer NAME|FILE, a volume's
+  std::string max_pixels;  ///< --max-pixels N, an image's; "" = kMaxImagePixels
 };
 
-/// Registers --size (described by `size_help`), --style, --view and --transfer on `command`.
+/// Registers --size (described by `size_help`), --style, --view, --transfer and --max-pixels on
+/// `command`.
 void add_source_options(CLI::App& command, SourceArgs& args, const std::string& size_help);
 
 /// Adds the input and the --style file (if any) to `files` as inputs, so no output overwrites

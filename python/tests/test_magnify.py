@@ -121,6 +121,12 @@ def test_images_round_trip_through_png(tmp_path, demo):
     back = geolens.load_image(str(path))
     assert back.shape == (100, 80, 3) and back.dtype == np.uint8
     assert np.array_equal(back, demo[:100, :80])
+    # max_pixels: exactly the picture's pixels are read; one fewer is refused, naming the limit.
+    assert geolens.load_image(str(path), max_pixels=8000).shape == (100, 80, 3)
+    with pytest.raises(ValueError, match=r"80 x 100 pixels is more than the 7999 read \(max_pixels"):
+        geolens.load_image(str(path), max_pixels=7999)
+    with pytest.raises(ValueError, match="max_pixels must be >= 1, got -3"):
+        geolens.load_image(str(path), max_pixels=-3)
 
 
 def test_image_files_refuse_bad_paths(tmp_path, demo):

@@ -1,7 +1,5 @@
 // PNG and JPEG files in and out (the codecs: src/io/*_codec.cpp); the Image type is image.cpp.
 
-#include "geolens/io/image.h"
-
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -12,6 +10,7 @@
 
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
+#include "geolens/io/image.h"
 #include "io/codecs.h"
 
 namespace geolens {
@@ -55,7 +54,9 @@ std::vector<uint8_t> read_bytes(const std::string& path, std::string& reason) {
   return bytes;
 }
 
-Image decode(const std::string& path, codecs::Depth depth, const char* function) {
+Image decode(const std::string& path, codecs::Depth depth, uint64_t max_pixels,
+             const char* function) {
+  require(max_pixels >= 1, function, "max_pixels must be >= 1, got 0");
   std::string reason;
   const std::vector<uint8_t> bytes = read_bytes(path, reason);
   auto fail = [&](const std::string& why) {
@@ -63,8 +64,8 @@ Image decode(const std::string& path, codecs::Depth depth, const char* function)
   };
   if (!reason.empty()) throw fail(reason);
   try {
-    if (codecs::is_png(bytes)) return codecs::decode_png(bytes, depth);
-    if (codecs::is_jpeg(bytes)) return codecs::decode_jpeg(bytes, depth);
+    if (codecs::is_png(bytes)) return codecs::decode_png(bytes, depth, max_pixels);
+    if (codecs::is_jpeg(bytes)) return codecs::decode_jpeg(bytes, depth, max_pixels);
   } catch (const codecs::CodecError& e) {
     throw fail(e.what());
   }
@@ -73,13 +74,22 @@ Image decode(const std::string& path, codecs::Depth depth, const char* function)
 
 }  // namespace
 
-Image load_image(const std::string& path) {
-  return decode(path, codecs::Depth::kRound, "load_image");
+Image load_image(const std::string& path, uint64_t max_pixels) {
+  return decode(path, codecs::Depth::kRound, max_pixels, "load_image");
 }
 
-Image load_mask(const std::string& path) {
-  return decode(path, codecs::Depth::kNonZero, "load_mask");
+Image load_mask(const std::string& path, uint64_t max_pixels) {
+  return decode(path, codecs::Depth::kNonZero, max_pixels, "load_mask");
 }
+
+namespace codecs {
+
+std::string limit_message(uint64_t width, uint64_t height, uint64_t max_pixels) {
+  return std::to_string(width) + " x " + std::to_string(height) + " pixels is more than the " +
+         std::to_string(max_pixels) + " read (max_pixels; --max-pixels raises it)";
+}
+
+}  // namespace codecs
 
 void save_image(const std::string& path, const Image& image, int jpeg_quality) {
   const Format format = format_of(path);

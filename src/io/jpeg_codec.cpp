@@ -48,7 +48,9 @@ bool is_jpeg(const std::vector<uint8_t>& bytes) {
 
 // The libjpeg objects live outside the setjmp frame and no C++ object with a destructor is
 // created between setjmp and the last libjpeg call, so the jump skips no destructor.
-Image decode_jpeg(const std::vector<uint8_t>& bytes, Depth depth) {
+Image decode_jpeg(const std::vector<uint8_t>& bytes, Depth depth, uint64_t max_pixels) {
+  // A size over the limit, kept for the message made after the jump.
+  volatile uint64_t over_width = 0, over_height = 0;
   jpeg_decompress_struct info{};
   ErrorManager errors;
   install(errors, reinterpret_cast<j_common_ptr>(&info));
@@ -56,6 +58,8 @@ Image decode_jpeg(const std::vector<uint8_t>& bytes, Depth depth) {
   const auto image = std::make_unique<Image>();
   if (setjmp(errors.jump)) {
     jpeg_destroy_decompress(&info);
+    if (over_width > 0)
+      throw CodecError("JPEG: " + limit_message(over_width, over_height, max_pixels));
     throw CodecError(std::string("JPEG: ") + errors.message);
   }
   jpeg_create_decompress(&info);
@@ -65,10 +69,9 @@ Image decode_jpeg(const std::vector<uint8_t>& bytes, Depth depth) {
     std::snprintf(errors.message, sizeof errors.message, "CMYK JPEG is not supported");
     std::longjmp(errors.jump, 1);
   }
-  if (uint64_t(info.image_width) * info.image_height > kMaxPixels) {
-    std::snprintf(errors.message, sizeof errors.message,
-                  "%u x %u pixels is more than geolens reads (2^28)", info.image_width,
-                  info.image_height);
+  if (uint64_t(info.image_width) * info.image_height > max_pixels) {
+    over_width = info.image_width;
+    over_height = info.image_height;
     std::longjmp(errors.jump, 1);
   }
   info.out_color_space = info.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;

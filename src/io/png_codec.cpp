@@ -25,16 +25,18 @@ constexpr size_t kMaxChunk = size_t(64) << 20;
 /// Refuses a PNG whose header claims more pixels than geolens reads, in geolens's words: the
 /// size from the header's own bytes (big-endian width and height after the signature and the
 /// IHDR chunk's length and type).
-void check_claimed_size(const std::vector<uint8_t>& bytes) {
+void check_claimed_size(const std::vector<uint8_t>& bytes, uint64_t max_pixels) {
   if (bytes.size() < 24) return;
   auto word = [&](size_t at) {
     return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
            uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
   };
   const uint32_t width = word(16), height = word(20);
-  if (width > kMaxSide || height > kMaxSide || uint64_t(width) * height > kMaxPixels)
+  if (width > kMaxSide || height > kMaxSide)
     throw CodecError("PNG: " + std::to_string(width) + " x " + std::to_string(height) +
-                     " pixels is more than geolens reads (2^28, sides up to 2^16)");
+                     " pixels: a side is more than geolens reads (2^16)");
+  if (uint64_t(width) * height > max_pixels)
+    throw CodecError("PNG: " + limit_message(width, height, max_pixels));
 }
 
 /// A decoder of `bytes` (which it keeps pointing to) with geolens's limits.
@@ -96,8 +98,8 @@ bool is_png(const std::vector<uint8_t>& bytes) {
   return bytes.size() >= 8 && std::equal(kSignature, kSignature + 8, bytes.begin());
 }
 
-Image decode_png(const std::vector<uint8_t>& bytes, Depth depth) {
-  check_claimed_size(bytes);
+Image decode_png(const std::vector<uint8_t>& bytes, Depth depth, uint64_t max_pixels) {
+  check_claimed_size(bytes, max_pixels);
   const Context ctx = png_decoder(bytes);
   spng_ihdr ihdr{};
   check(spng_get_ihdr(ctx.get(), &ihdr), "PNG header");

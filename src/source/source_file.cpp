@@ -55,7 +55,7 @@ SourceFile open_source(const std::string& path, const SourceFileOptions& options
   if (ext == ".geojson" || ext == ".json") return open_vector_map(path, options);
   if (ext == ".obj" || ext == ".ply") return open_mesh_source(path, options);
   if (ext == ".nii" || ext == ".nii.gz" || ext == ".nrrd") return open_volume_source(path, options);
-  return image_source(load_image(path));
+  return image_source(load_image(path, options.max_pixels));
 }
 
 }  // namespace geolens

@@ -97,6 +97,13 @@ TEST_F(Cli, RejectsEveryBadInputWithOneLineAndExitTwo) {
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --profile cone", "cone");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --model ridge", "ridge");
   expect_refused("magnify " + in + out + " --lens circle:50,50,20 --size 0x10", "--size");
+  // An image over the pixel limit is refused naming the limit and its option (256 x 192 here).
+  expect_refused(
+      "magnify " + in + out + " --lens circle:50,50,20 --max-pixels 49151",
+      "256 x 192 pixels is more than the 49151 read (max_pixels; --max-pixels raises it)");
+  for (const char* bad : {"0", "-3", "2.5", "1e20", "nan"})
+    expect_refused("magnify " + in + out + " --lens circle:50,50,20 --max-pixels " + bad,
+                   "--max-pixels: must be");
 }
 
 TEST_F(Cli, RejectsBadPolygonsAndMasks) {
@@ -246,9 +253,10 @@ TEST_F(Cli, InterruptedRunLeavesNoTemporaryAndLinksAreFollowed) {
 // A run that succeeds writes every output, each where it was asked, and no temporary file.
 TEST_F(Cli, SuccessfulRunWritesEveryOutput) {
   fs::create_directories(path("sub"));
-  const CliRun r = run("magnify " + path("in.png") + " -o " + path("out.png") + " --before-after " +
-                       path("sub/both.jpg") + " --export-mesh " + path("sub/m") + " --stats " +
-                       path("stats.json") + " --lens circle:128,96,40 --mesh 40");
+  const CliRun r =
+      run("magnify " + path("in.png") + " -o " + path("out.png") + " --before-after " +
+          path("sub/both.jpg") + " --export-mesh " + path("sub/m") + " --stats " +
+          path("stats.json") + " --lens circle:128,96,40 --mesh 40 --max-pixels 49152");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(load_image(path("out.png")).width, 256);
   EXPECT_EQ(load_image(path("sub/both.jpg")).width, 256 + 8 + 256);

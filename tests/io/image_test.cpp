@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "support/refusal.h"
 #include "support/scratch_folder.h"
 #include "support/test_data.h"
 
@@ -280,6 +281,27 @@ TEST_F(ImageFileTest, PaletteWithTransparencyBecomesRgba) {
   EXPECT_EQ(image.pixels, (std::vector<uint8_t>{0x10, 0x20, 0x30, 0, 0xf0, 0xe0, 0xd0, 255}));
 }
 
+// max_pixels bounds what an image may decode to, named in the refusal; a picture of exactly that
+// many pixels is read, PNG and JPEG alike, and the limit must be at least 1.
+TEST_F(ImageFileTest, MaxPixelsIsALimitThatNamesItself) {
+  for (const std::string name : {"limit.png", "limit.jpg"}) {
+    geolens::save_image(path(name), gradient(40, 30, 3));
+    EXPECT_EQ(geolens::load_image(path(name), 1200).width, 40) << name;
+    const std::string refused =
+        geolens::test::refusal([&] { geolens::load_image(path(name), 1199); });
+    EXPECT_NE(refused.find("40 x 30 pixels is more than the 1199 read (max_pixels"),
+              std::string::npos)
+        << refused;
+    EXPECT_NE(
+        geolens::test::refusal([&] { geolens::load_mask(path(name), 1199); }).find("max_pixels"),
+        std::string::npos);
+    EXPECT_NE(geolens::test::refusal([&] {
+                geolens::load_image(path(name), 0);
+              }).find("max_pixels must be >= 1"),
+              std::string::npos);
+  }
+}
+
 TEST_F(ImageFileTest, DamagedFilesAreRefusedWithOneLineNamingTheFileAndTheFault) {
   auto message = [&](const std::string& file) {
     try {
@@ -306,7 +328,10 @@ TEST_F(ImageFileTest, DamagedFilesAreRefusedWithOneLineNamingTheFileAndTheFault)
       big_endian(20000) + big_endian(20000) + char(8) + char(2) + std::string(3, '\0');
   write_bytes(path("huge.png"), std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", huge) +
                                     chunk("IDAT", zlib_stored("")) + chunk("IEND", ""));
-  EXPECT_NE(message("huge.png").find("more than geolens reads"), std::string::npos)
+  EXPECT_NE(message("huge.png")
+                .find("20000 x 20000 pixels is more than the 268435456 read "
+                      "(max_pixels; --max-pixels raises it)"),
+            std::string::npos)
       << message("huge.png");
   // 16384 x 16384 pixels (2^28, allowed) at 16 bits RGBA is decoded a row at a time into 8 bits:
   // a file whose data is missing is refused at its first row, nothing of its size allocated.

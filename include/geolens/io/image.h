@@ -27,16 +27,20 @@ struct Image {
   ///@}
 };
 
+/// The most pixels load_image decodes unless told otherwise: 2^28 (16384 x 16384; 1 GiB as RGBA).
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
 /// Reads a PNG (libspng: any colour type and depth; palette to RGB(A), transparency to alpha) or
 /// a JPEG (libjpeg-turbo: grey or RGB), recognized by content, not by extension. 16-bit samples
 /// are rounded to 8 bits. Throws InvalidInput naming the path and what is wrong when the file is
 /// missing, unreadable, corrupt (a damaged JPEG is refused, not decoded with made-up pixels) or
-/// larger than 2^28 pixels (16384 x 16384), refused from its header before any allocation.
-Image load_image(const std::string& path);
+/// larger than `max_pixels` (>= 1; the message names the limit, max_pixels) or 2^16 on a PNG's
+/// side, refused from its header before any allocation.
+Image load_image(const std::string& path, uint64_t max_pixels = kMaxImagePixels);
 
 /// Reads a mask: like load_image, but the first channel is 255 wherever the file's sample is
 /// non-zero at its own depth and 0 elsewhere (so a 16-bit mask of values 1 - 255 is not empty).
-Image load_mask(const std::string& path);
+Image load_mask(const std::string& path, uint64_t max_pixels = kMaxImagePixels);
 
 /// Writes `image` as PNG (libspng, a fast compression setting) or JPEG (libjpeg-turbo), chosen by
 /// the extension (.png, .jpg, .jpeg; case-insensitive), through write_file (file_io.h), so

@@ -30,6 +30,7 @@ struct SourceFileOptions {
   std::string style;     ///< vector map: a style file (--style); empty: the built-in style
   std::string view;      ///< 3D scene: the camera (--view), e.g. "AZ,EL" in degrees
   std::string transfer;  ///< volume: a transfer preset or table file (--transfer)
+  uint64_t max_pixels = kMaxImagePixels;  ///< image: the most pixels decoded (--max-pixels), >= 1
 };
 
 /// A source opened from a file, and the frame lenses are placed in. Lenses, the solved mesh's
