@@ -97,6 +97,9 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
                 "side, > 0")
       ->capture_default_str();
   c->add_option("--format", a.format, "csv or geojson (default: from the file extension)");
+  c->add_option("--max-points", a.max_points,
+                "the most points a CSV input may hold, in [1, 2^30]; default " +
+                    std::to_string(kMaxCsvPoints) + " (2^22; 2^22 took 0.8 GB)");
   return c;
 }
 
@@ -154,6 +157,9 @@ int run_map(const MapArgs& a) {
   // A hundredth of a pixel is finer than any output shows; 5e-5 made 8.4 GB of a 4.6 KB file.
   require(a.max_segment >= 0.01, "--max-segment",
           "must be at least 0.01 pixels, got " + number_text(a.max_segment));
+  const size_t max_points = a.max_points.empty()
+                                ? kMaxCsvPoints
+                                : size_t(parse_count(a.max_points, "--max-points", 1, 1u << 30));
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
   add_map_files(files, a);
@@ -161,7 +167,8 @@ int run_map(const MapArgs& a) {
   const std::string name = a.input == "-" ? "standard input" : a.input;
   std::variant<PointTable, VectorData> data;
   if (format == Format::kCsv)
-    data = a.input == "-" ? parse_point_csv(standard_input(), name) : read_point_csv(a.input);
+    data = a.input == "-" ? parse_point_csv(standard_input(), name, max_points)
+                          : read_point_csv(a.input, max_points);
   else
     data = a.input == "-" ? parse_geojson(standard_input(), name) : read_geojson(a.input);
   const LensOptions options = cli::parse_options(a.lens);

@@ -1,6 +1,5 @@
 #include "source_args.h"
 
-#include <cmath>
 #include <filesystem>
 
 #include "lens_args.h"
@@ -37,12 +36,8 @@ SourceFile open_input(const std::string& input, const SourceArgs& a) {
   options.style = a.style;
   options.view = a.view;
   options.transfer = a.transfer;
-  if (!a.max_pixels.empty()) {
-    const double n = parse_number(a.max_pixels, "--max-pixels");
-    require(n >= 1 && n <= double(uint64_t(1) << 40) && n == std::floor(n), "--max-pixels",
-            "must be a whole number in [1, 2^40], got '" + a.max_pixels + "'");
-    options.max_pixels = uint64_t(n);
-  }
+  if (!a.max_pixels.empty())
+    options.max_pixels = parse_count(a.max_pixels, "--max-pixels", 1, uint64_t(1) << 40);
   return open_source(input, options);
 }
 

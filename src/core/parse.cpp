@@ -49,6 +49,14 @@ int parse_integer(const std::string& text, const std::string& what) {
   return *value;
 }
 
+uint64_t parse_count(const std::string& text, const std::string& what, uint64_t lo, uint64_t hi) {
+  const double value = parse_number(text, what);
+  require(value >= double(lo) && value <= double(hi) && value == std::floor(value), what.c_str(),
+          "must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+              "], got '" + text + "'");
+  return uint64_t(value);
+}
+
 std::pair<int, int> parse_size(const std::string& text, const std::string& what, int lo, int hi) {
   const size_t x = text.find('x');
   require(x != std::string::npos, what.c_str(), "must be WxH, got '" + text + "'");

@@ -1,5 +1,6 @@
 #include "geolens/io/point_csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -80,8 +81,9 @@ PointTable parse_point_csv(const std::string& text, const std::string& name, siz
             name + ":" + std::to_string(number_of_line) +
                 ": expected two finite numbers \"x,y\" first, got \"" + quoted_line(line) + "\"");
     require(table.rest.size() < max_points, "parse_point_csv",
-            name + ":" + std::to_string(number_of_line) + ": more than " +
-                std::to_string(max_points) + " points (split the file)");
+            name + ":" + std::to_string(number_of_line) + ": more than the " +
+                std::to_string(max_points) +
+                " points read (max_points; --max-points raises it, or split the file)");
     coordinates.push_back(*x);
     coordinates.push_back(*y);
     table.rest.emplace_back(f.rest);
@@ -91,8 +93,9 @@ PointTable parse_point_csv(const std::string& text, const std::string& name, siz
   return table;
 }
 
-PointTable read_point_csv(const std::string& path) {
-  return parse_point_csv(read_file(path, "read_point_csv", "CSV", kMaxCsvBytes), path);
+PointTable read_point_csv(const std::string& path, size_t max_points) {
+  const size_t bytes = std::max(kMaxCsvBytes, std::min(max_points, size_t(1) << 40) * 64);
+  return parse_point_csv(read_file(path, "read_point_csv", "CSV", bytes), path, max_points);
 }
 
 std::string point_csv_text(const PointTable& table) {

@@ -149,6 +149,17 @@ TEST_F(MapCli, RefusesBadInputWithOneLineAndExitTwo) {
   expect_refused("map " + path("in.csv") + size + " --max-segment 5e-5",
                  "--max-segment: must be at least 0.01 pixels");
   expect_refused("map " + path("missing.csv") + size, "missing.csv");
+  // The points a CSV may hold: a limit that names itself and its option, raised by it.
+  write("three.csv", "x,y\n1,2\n3,4\n5,6\n");
+  expect_refused("map " + path("three.csv") + size + " --max-points 2 -o " + path("out.csv"),
+                 "more than the 2 points read (max_points; --max-points raises it");
+  expect_refused("map - " + size + " --format csv --max-points 2 < " + path("three.csv"),
+                 "more than the 2 points read");
+  EXPECT_EQ(run("map " + path("three.csv") + size + " --max-points 3 -o " + path("out.csv")).code,
+            0);
+  for (const char* bad : {"0", "-1", "1.5", "2e9", "nan"})
+    expect_refused("map " + path("in.csv") + size + " --max-points " + bad,
+                   "--max-points: must be");
   expect_refused("map " + path("in.csv") + " --image " + path("missing.png") + kLens,
                  "missing.png");
   expect_refused("map " + path("in.csv") + " --size 512x384 --lens circle:700,96,30", "outside");

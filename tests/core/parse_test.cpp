@@ -48,6 +48,27 @@ TEST(Parse, AFailureNamesWhatWasReadAndQuotesTheText) {
   EXPECT_EQ(parse_number("0.5", "x"), 0.5);
 }
 
+TEST(Parse, ACountIsAWholeNumberWithinTheRange) {
+  EXPECT_EQ(parse_count("268435456", "--max-pixels", 1, uint64_t(1) << 40), 268435456u);
+  EXPECT_EQ(parse_count("1e9", "--max-pixels", 1, uint64_t(1) << 40), 1000000000u);
+  EXPECT_EQ(parse_count("1099511627776", "--max-pixels", 1, uint64_t(1) << 40), uint64_t(1) << 40);
+  const std::pair<const char*, const char*> refused[] = {
+      {"0", "--max-points: must be a whole number in [1, 1024], got '0'"},
+      {"-3", "--max-points: must be a whole number in [1, 1024], got '-3'"},
+      {"2.5", "--max-points: must be a whole number in [1, 1024], got '2.5'"},
+      {"1025", "--max-points: must be a whole number in [1, 1024], got '1025'"},
+      {"nan", "--max-points: must be a number, got 'nan'"},
+      {"lots", "--max-points: must be a number, got 'lots'"}};
+  for (const auto& [text, message] : refused) {
+    try {
+      parse_count(text, "--max-points", 1, 1024);
+      ADD_FAILURE() << text;
+    } catch (const InvalidInput& e) {
+      EXPECT_STREQ(e.what(), message);
+    }
+  }
+}
+
 TEST(Parse, ASizeIsTwoIntegersWithinTheRange) {
   EXPECT_EQ(parse_size("640x480", "--size", 1, 16384), std::pair(640, 480));
   EXPECT_EQ(parse_size("1x16384", "--size", 1, 16384), std::pair(1, 16384));

@@ -89,7 +89,8 @@ TEST(PointCsv, MorePointsThanTheBoundAreRefused) {
     ADD_FAILURE() << "four points read with a bound of three";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()),
-              "parse_point_csv: four.csv:6: more than 3 points (split the file)");
+              "parse_point_csv: four.csv:6: more than the 3 points read (max_points; --max-points "
+              "raises it, or split the file)");
   }
   EXPECT_EQ(kMaxCsvPoints, size_t(1) << 22);
 }

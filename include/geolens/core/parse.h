@@ -2,6 +2,7 @@
 // Numbers and sizes as users write them (options, lens specs, scripts): one parser for every
 // face, with one wording of what is wrong.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -19,6 +20,11 @@ std::optional<int> read_integer(const std::string& text);
 double parse_number(const std::string& text, const std::string& what);
 /// read_integer, or InvalidInput "WHAT: must be an integer, got 'TEXT'".
 int parse_integer(const std::string& text, const std::string& what);
+
+/// A count users write (a limit: "268435456", "1e9"): a number in read_number's syntax that is
+/// whole and in [lo, hi]; else InvalidInput "WHAT: must be a whole number in [LO, HI], got 'TEXT'"
+/// (or parse_number's message for what is no number).
+uint64_t parse_count(const std::string& text, const std::string& what, uint64_t lo, uint64_t hi);
 
 /// "WxH" (pixels): two integers joined by 'x', each in [lo, hi]. Throws InvalidInput naming
 /// `what` ("--size: must be WxH, got '100'"; "--size: sides must be in [1, 16384], got '0x5'").

@@ -27,9 +27,9 @@ constexpr size_t kMaxCsvPoints = size_t(1) << 22;
 PointTable parse_point_csv(const std::string& text, const std::string& name,
                            size_t max_points = kMaxCsvPoints);
 
-/// parse_point_csv of the file at `path`. Throws InvalidInput naming the path if it cannot be
-/// read.
-PointTable read_point_csv(const std::string& path);
+/// parse_point_csv of the file at `path` (of at most 256 MiB, or 64 bytes a point where
+/// `max_points` allows more). Throws InvalidInput naming the path if it cannot be read.
+PointTable read_point_csv(const std::string& path, size_t max_points = kMaxCsvPoints);
 
 /// The CSV text of `table`: its header line if any, then one "x,y<rest>" line per point, each
 /// coordinate in the shortest decimal form that reads back to the same double (std::to_chars),
