@@ -16,6 +16,10 @@ void add_source_options(CLI::App& command, SourceArgs& a, const std::string& siz
                      "the most pixels an image input may have (refused from its header above it; "
                      "each takes 4 bytes or more), in [1, 2^40]; default " +
                          std::to_string(kMaxImagePixels) + " (2^28)");
+  command.add_option("--max-voxels", a.max_voxels,
+                     "the most voxels a volume input (NIfTI, NRRD) may have (refused from its "
+                     "header above it; each takes 4 bytes), in [1, 2^36]; default 268435456 "
+                     "(2^28)");
 }
 
 void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
@@ -38,6 +42,8 @@ SourceFile open_input(const std::string& input, const SourceArgs& a) {
   options.transfer = a.transfer;
   if (!a.max_pixels.empty())
     options.max_pixels = parse_count(a.max_pixels, "--max-pixels", 1, uint64_t(1) << 40);
+  if (!a.max_voxels.empty())
+    options.max_voxels = parse_count(a.max_voxels, "--max-voxels", 1, uint64_t(1) << 36);
   return open_source(input, options);
 }
 

@@ -18,10 +18,11 @@ struct SourceArgs {
   std::string view;        ///< --view AZ,EL, a 3D scene's camera
   std::string transfer;    ///< --transfer NAME|FILE, a volume's
   std::string max_pixels;  ///< --max-pixels N, an image's; "" = kMaxImagePixels
+  std::string max_voxels;  ///< --max-voxels N, a volume's; "" = the readers' default (2^28)
 };
 
-/// Registers --size (described by `size_help`), --style, --view, --transfer and --max-pixels on
-/// `command`.
+/// Registers --size (described by `size_help`), --style, --view, --transfer, --max-pixels and
+/// --max-voxels on `command`.
 void add_source_options(CLI::App& command, SourceArgs& args, const std::string& size_help);
 
 /// Adds the input and the --style file (if any) to `files` as inputs, so no output overwrites

@@ -121,8 +121,9 @@ long long data_size(const std::string& path, long long enough) {
 
 }  // namespace
 
-ScalarVolume load_nifti(const std::string& path) {
+ScalarVolume load_nifti(const std::string& path, size_t max_voxels) {
   const char* f = "load_nifti";
+  require(max_voxels >= 1, f, "max_voxels must be >= 1, got 0");
   const std::string where = "'" + path + "': ";
   require(std::filesystem::is_regular_file(path), f,
           where + (std::filesystem::exists(path) ? "not a file" : "no such file"));
@@ -141,10 +142,10 @@ ScalarVolume load_nifti(const std::string& path) {
   require(volume.nx >= 1 && volume.ny >= 1 && volume.nz >= 1, f,
           where + "a volume of zero size (" + std::to_string(image->nx) + " x " +
               std::to_string(image->ny) + " x " + std::to_string(image->nz) + " voxels)");
-  require(uint64_t(volume.nx) * uint64_t(volume.ny) * uint64_t(volume.nz) <= kMaxVoxels, f,
+  const uint64_t voxels = uint64_t(volume.nx) * uint64_t(volume.ny) * uint64_t(volume.nz);
+  require(voxels <= max_voxels, f,
           where + std::to_string(volume.nx) + " x " + std::to_string(volume.ny) + " x " +
-              std::to_string(volume.nz) + " voxels, more than the " + std::to_string(kMaxVoxels) +
-              " read (2^28)");
+              std::to_string(volume.nz) + ": " + voxel_limit_message(voxels, max_voxels));
   VoxelType type = VoxelType::uint8;
   require(voxel_type_of(image->datatype, type), f,
           where + "voxel type " + nifti_datatype_string(image->datatype) + " is not read " +
@@ -155,9 +156,10 @@ ScalarVolume load_nifti(const std::string& path) {
       "the header claims " + std::to_string(volume.nx) + " x " + std::to_string(volume.ny) + " x " +
       std::to_string(volume.nz) + (image->nvox > count ? " x ..." : "") + " " +
       detail::voxel_type_name(type) + " voxels (" + std::to_string(bytes) + " bytes)";
-  require(bytes <= kMaxVolumeBytes, f,
-          where + claim + ", more than the " + std::to_string(kMaxVolumeBytes) +
-              " bytes of samples read (2^30)");
+  const size_t max_bytes = volume_bytes_limit(max_voxels);
+  require(bytes <= max_bytes, f,
+          where + claim + ", more than the " + std::to_string(max_bytes) +
+              " bytes of samples read (4 a voxel of max_voxels, at least 2^30)");
   const long long size = data_size(image->iname != nullptr ? image->iname : path,
                                    image->iname_offset + (long long)(bytes));
   require(size >= 0, f, where + "corrupt gzip data");

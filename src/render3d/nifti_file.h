@@ -14,7 +14,8 @@ namespace geolens {
 /// the first call, for the process) since every refusal is reported here. Thread-safe (calls
 /// into libnifti are serialized). Throws InvalidInput naming "load_nifti" and the file: not a
 /// NIfTI-1 file, a volume of zero size, an unsupported type, data that ends before the header's
-/// voxels (the header claims more data than the file holds).
-ScalarVolume load_nifti(const std::string& path);
+/// voxels (the header claims more data than the file holds), more than `max_voxels` voxels (>= 1;
+/// the message names the limit) or bytes of samples than volume_bytes_limit.
+ScalarVolume load_nifti(const std::string& path, size_t max_voxels = kMaxVoxels);
 
 }  // namespace geolens

@@ -25,7 +25,11 @@ namespace {
 constexpr const char* kFn = "load_nrrd";
 
 /// A NRRD file, or its detached data, holds at most the samples read and a header.
-constexpr size_t kMaxNrrdBytes = kMaxVolumeBytes + (size_t(1) << 20);
+// The most bytes of a NRRD file (or its detached data) read with a limit of `max_voxels`: its
+// samples' limit and a MiB of header.
+size_t nrrd_bytes_limit(size_t max_voxels) {
+  return volume_bytes_limit(max_voxels) + (size_t(1) << 20);
+}
 
 using detail::VoxelType;
 
@@ -201,7 +205,7 @@ VoxelType voxel_type(const HeaderFields& h) {
 
 /// Sets the volume's nx, ny and nz from the "sizes" field, refusing a size out of range or a
 /// volume of no or too many voxels.
-void read_sizes(const HeaderFields& h, ScalarVolume& volume) {
+void read_sizes(const HeaderFields& h, ScalarVolume& volume, size_t max_voxels) {
   std::istringstream in(h.field("sizes", true));
   long long sizes[3];
   std::string rest;
@@ -214,8 +218,8 @@ void read_sizes(const HeaderFields& h, ScalarVolume& volume) {
   volume.nz = int(sizes[2]);
   require(volume.nx > 0 && volume.ny > 0 && volume.nz > 0, kFn,
           h.bad("sizes", "a volume of zero size"));
-  require(uint64_t(sizes[0]) * uint64_t(sizes[1]) * uint64_t(sizes[2]) <= kMaxVoxels, kFn,
-          h.bad("sizes", "more than the " + std::to_string(kMaxVoxels) + " voxels read (2^28)"));
+  const uint64_t voxels = uint64_t(sizes[0]) * uint64_t(sizes[1]) * uint64_t(sizes[2]);
+  require(voxels <= max_voxels, kFn, h.bad("sizes", voxel_limit_message(voxels, max_voxels)));
 }
 
 /// Whether samples of several bytes are swapped to the machine's order (the "endian" field).
@@ -285,7 +289,8 @@ struct Data {
 };
 
 /// The data: attached after the header's blank line, or in the detached file it names (read).
-Data find_data(const Header& header, const std::string& path, const std::string& where) {
+Data find_data(const Header& header, const std::string& path, const std::string& where,
+               size_t max_bytes) {
   const std::string detached_name = header.data_file();
   Data data;
   data.start = header.data_start;
@@ -301,7 +306,7 @@ Data find_data(const Header& header, const std::string& path, const std::string&
     std::error_code error;
     require(std::filesystem::exists(data_path, error), kFn,
             where + "data file '" + data_path + "' does not exist");
-    data.detached = read_file(data_path, kFn, "NRRD data", kMaxNrrdBytes);
+    data.detached = read_file(data_path, kFn, "NRRD data", max_bytes);
     data.is_detached = true;
     data.start = 0;
     data.where = where + "data file '" + data_path + "': ";
@@ -359,12 +364,13 @@ const unsigned char* raw_samples(const HeaderFields& h, const std::string& bytes
 /// The gzip data inflated, its first `skip` bytes skipped (the byte skip applies to the inflated
 /// data; -1 is read only with raw encoding), checked to be the `expected` bytes `size_text` claims.
 std::string gzip_samples(const HeaderFields& h, const std::string& bytes, const Data& data,
-                         long long skip, size_t expected, const std::string& size_text) {
+                         long long skip, size_t expected, const std::string& size_text,
+                         size_t max_bytes) {
   require(skip != -1, kFn, h.bad("byte skip", "-1 is read only with raw encoding"));
   require(skip >= 0, kFn, h.bad("byte skip", "not a byte count"));
   // What is inflated is held to a raw file's limit: a skip costs no more than its bytes would.
-  require(size_t(skip) <= kMaxNrrdBytes - expected, kFn,
-          h.bad("byte skip", "with the samples, more than the " + std::to_string(kMaxNrrdBytes) +
+  require(size_t(skip) <= max_bytes - expected, kFn,
+          h.bad("byte skip", "with the samples, more than the " + std::to_string(max_bytes) +
                                  " bytes of data read"));
   const size_t held = bytes.size() > data.start ? bytes.size() - data.start : 0;
   size_t skipped = 0;
@@ -399,15 +405,17 @@ std::string nrrd_data_path(const std::string& path) {
   }
 }
 
-ScalarVolume load_nrrd(const std::string& path) {
+ScalarVolume load_nrrd(const std::string& path, size_t max_voxels) {
+  require(max_voxels >= 1, kFn, "max_voxels must be >= 1, got 0");
+  const size_t max_bytes = nrrd_bytes_limit(max_voxels);
   const std::string where = "'" + path + "': ";
-  const std::string text = read_file(path, kFn, "NRRD", kMaxNrrdBytes);
+  const std::string text = read_file(path, kFn, "NRRD", max_bytes);
   const Header header = parse_header(text, where);
   const HeaderFields h{header, where};
   const VoxelType type = voxel_type(h);
   require(h.field("dimension", true) == "3", kFn, h.bad("dimension", "only 3D volumes are read"));
   ScalarVolume volume;
-  read_sizes(h, volume);
+  read_sizes(h, volume, max_voxels);
   const std::string encoding = h.field("encoding", true);
   require(encoding == "raw" || encoding == "gzip" || encoding == "gz", kFn,
           h.bad("encoding", "only raw and gzip are read"));
@@ -420,15 +428,16 @@ ScalarVolume load_nrrd(const std::string& path) {
   else if (!directions.empty())
     read_directions(h, directions, volume);
 
-  Data data = find_data(header, path, where);
+  Data data = find_data(header, path, where, max_bytes);
   const std::string& data_bytes = data.bytes(text);
   skip_lines(h, data_bytes, data.start);
   const size_t count = size_t(volume.nx) * size_t(volume.ny) * size_t(volume.nz);
   const size_t expected = count * size_t(bytes);
-  require(expected <= kMaxVolumeBytes, kFn,
+  const size_t max_samples = volume_bytes_limit(max_voxels);
+  require(expected <= max_samples, kFn,
           where + "the header claims " + std::to_string(expected) +
-              " bytes of samples, more than the " + std::to_string(kMaxVolumeBytes) +
-              " read (2^30)");
+              " bytes of samples, more than the " + std::to_string(max_samples) +
+              " read (4 a voxel of max_voxels, at least 2^30)");
   const std::string size_text = std::to_string(volume.nx) + " x " + std::to_string(volume.ny) +
                                 " x " + std::to_string(volume.nz) + " " +
                                 detail::voxel_type_name(type) + " voxels (" +
@@ -439,7 +448,7 @@ ScalarVolume load_nrrd(const std::string& path) {
   if (encoding == "raw") {
     samples = raw_samples(h, data_bytes, data, skip, expected, size_text);
   } else {
-    inflated = gzip_samples(h, data_bytes, data, skip, expected, size_text);
+    inflated = gzip_samples(h, data_bytes, data, skip, expected, size_text, max_bytes);
     samples = reinterpret_cast<const unsigned char*>(inflated.data());
   }
   volume.values.resize(count);

@@ -18,8 +18,9 @@ namespace geolens {
 /// Other fields and key:=value pairs are ignored. Throws InvalidInput naming "load_nrrd" and the
 /// file, with the header line or field at fault: a missing or unknown magic, type or encoding,
 /// a dimension other than 3, a size of zero, data that ends before sizes x type bytes (the
-/// header claims more data than the file holds), a corrupt gzip stream.
-ScalarVolume load_nrrd(const std::string& path);
+/// header claims more data than the file holds), a corrupt gzip stream, more than `max_voxels`
+/// voxels (>= 1; the message names the limit) or bytes of samples than volume_bytes_limit.
+ScalarVolume load_nrrd(const std::string& path, size_t max_voxels = kMaxVoxels);
 
 /// The file holding the samples of the NRRD at `path` when they are detached ("data file: NAME",
 /// relative to the header's folder), from the header alone (its lines up to the blank line, at

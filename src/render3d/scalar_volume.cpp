@@ -20,4 +20,9 @@ void check_volume(const ScalarVolume& volume, const char* function, const std::s
     require(std::isfinite(v), function, where + "a voxel value is not finite");
 }
 
+std::string voxel_limit_message(uint64_t voxels, size_t max_voxels) {
+  return std::to_string(voxels) + " voxels, more than the " + std::to_string(max_voxels) +
+         " read (max_voxels; --max-voxels raises it)";
+}
+
 }  // namespace geolens

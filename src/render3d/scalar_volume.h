@@ -2,7 +2,9 @@
 // A scalar volume (a CT or MRI scan, a phantom): voxel values on a regular 3D grid.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,15 @@ struct ScalarVolume {
 inline constexpr size_t kMaxVoxels = size_t(1) << 28;
 /// The most bytes of samples a volume file is read with (2^30: 2^27 float64 voxels).
 inline constexpr size_t kMaxVolumeBytes = size_t(1) << 30;
+
+/// The most bytes of samples read with a limit of `max_voxels`: kMaxVolumeBytes, or 4 a voxel
+/// where the limit is raised beyond kMaxVoxels.
+inline size_t volume_bytes_limit(size_t max_voxels) {
+  return std::max(kMaxVolumeBytes, std::min(max_voxels, size_t(1) << 40) * 4);
+}
+
+/// What a reader says of a volume of `voxels` over `max_voxels`, naming the limit.
+std::string voxel_limit_message(uint64_t voxels, size_t max_voxels);
 
 /// Throws InvalidInput naming `function` and `file` for a volume with a side of zero voxels
 /// ("a volume of zero size"), a value count that is not nx ny nz, a non-finite value, or a

@@ -39,7 +39,8 @@ SourceFile open_volume_source(const std::string& path, const SourceFileOptions& 
       "'" + path + "': size " + std::to_string(options.width) + " x " +
           std::to_string(options.height) + " has an empty side");
   VolumeSourceOptions chosen = volume;
-  ScalarVolume loaded = nifti ? load_nifti(path) : load_nrrd(path);
+  const size_t max_voxels = options.max_voxels > 0 ? size_t(options.max_voxels) : kMaxVoxels;
+  ScalarVolume loaded = nifti ? load_nifti(path, max_voxels) : load_nrrd(path, max_voxels);
   try {
     parse_view(options.view, chosen.camera);
     TransferFunction transfer = transfer_function(options.transfer, loaded);

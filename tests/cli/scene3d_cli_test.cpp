@@ -123,7 +123,17 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   write("huge.nrrd",
         "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 65536 65536 3\nencoding: gzip\n\nxx");
   expect_refused("magnify " + path("huge.nrrd") + lens,
-                 "sizes: 65536 65536 3): more than the 268435456 voxels read");
+                 "sizes: 65536 65536 3): 12884901888 voxels, more than the 268435456 read "
+                 "(max_voxels; --max-voxels raises it)");
+  // The limit is an option: a 4 x 4 x 4 volume is refused at --max-voxels 63 and read at 64.
+  write("cube.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n" +
+                         std::string(64, '\x40'));
+  expect_refused("magnify " + path("cube.nrrd") + lens + " --max-voxels 63",
+                 "64 voxels, more than the 63 read (max_voxels; --max-voxels raises it)");
+  EXPECT_EQ(run("magnify " + path("cube.nrrd") + lens + " --max-voxels 64").code, 0);
+  for (const char* bad : {"0", "-5", "0.5", "1e30"})
+    expect_refused("magnify " + path("cube.nrrd") + lens + " --max-voxels " + bad,
+                   "--max-voxels: must be");
   // A detached data file is an input: an output naming it is refused before any work (it was
   // overwritten).
   write("head.nrrd",

@@ -131,6 +131,16 @@ std::vector<float> as_float(const std::vector<T>& values) {
   return std::vector<float>(values.begin(), values.end());
 }
 
+// max_voxels bounds the volume read, named in the refusal, as load_nrrd's.
+TEST_F(NiftiFile, MaxVoxelsIsALimitThatNamesItself) {
+  const std::string file = write("limit.nii", nifti(small_header(), small_values()));
+  EXPECT_EQ(load_nifti(file, 12).values.size(), 12u);
+  EXPECT_NE(test::refusal([&] {
+              load_nifti(file, 11);
+            }).find("3 x 2 x 2: 12 voxels, more than the 11 read (max_voxels"),
+            std::string::npos);
+}
+
 TEST_F(NiftiFile, EveryVoxelTypeReadsItsValuesAsFloats) {
   using L8 = std::numeric_limits<int8_t>;
   using L16 = std::numeric_limits<int16_t>;

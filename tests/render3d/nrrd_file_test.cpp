@@ -128,6 +128,19 @@ TEST_F(NrrdFile, EveryTypeSpellingReadsItsValuesInEitherByteOrder) {
   }
 }
 
+// max_voxels bounds the volume read, named in the refusal: the 12 voxels are read at 12, refused
+// at 11 from the header, and the limit must be at least 1.
+TEST_F(NrrdFile, MaxVoxelsIsALimitThatNamesItself) {
+  const std::string file = write("limit.nrrd", small_header() + small_samples());
+  expect_small(load_nrrd(file, 12));
+  EXPECT_NE(test::refusal([&] {
+              load_nrrd(file, 11);
+            }).find("(sizes: 3 2 2): 12 voxels, more than the 11 read (max_voxels"),
+            std::string::npos);
+  EXPECT_NE(test::refusal([&] { load_nrrd(file, 0); }).find("max_voxels must be >= 1"),
+            std::string::npos);
+}
+
 TEST_F(NrrdFile, SpaceDirectionsGiveTheSpacingAsTheirLengths) {
   const ScalarVolume volume = load_nrrd(
       write("directions.nrrd", small_header("space: left-posterior-superior\nspace directions: "

@@ -31,6 +31,9 @@ struct SourceFileOptions {
   std::string view;      ///< 3D scene: the camera (--view), e.g. "AZ,EL" in degrees
   std::string transfer;  ///< volume: a transfer preset or table file (--transfer)
   uint64_t max_pixels = kMaxImagePixels;  ///< image: the most pixels decoded (--max-pixels), >= 1
+  /// volume (NIfTI, NRRD): the most voxels read (--max-voxels), >= 1; 0: the readers' default,
+  /// 2^28 (render3d's kMaxVoxels, not an installed header)
+  uint64_t max_voxels = 0;
 };
 
 /// A source opened from a file, and the frame lenses are placed in. Lenses, the solved mesh's
