@@ -97,13 +97,15 @@ int FocusPipeline::grid_vertices(const Eigen::AlignedBox2d& box,
   // A circle of under 2 cells is not followed by the mesh, and its band of 1.4 cells holds its
   // footprint's edge too close to fit any zoom: an r 15 circle at zoom 3 beside an r 200 one 780
   // px away on a 1024 px image (10 px cells) was not magnified at all, though alone it got 3.
+  // A circle too small even for the finest grid leaves the grid as it is (its cost would buy
+  // nothing: the 1000 random setups' sweep took 55 s with it, 42 s without).
   const int mesh = c_.options.mesh;
   const double side = box.sizes().maxCoeff();
   int vertices = mesh;
   for (const Lens& lens : lenses) {
     if (!lens.region.circle()) continue;
     const double cells = std::ceil(2 * side / lens.region.size() * (1 + 1e-9));
-    vertices = std::max(vertices, int(std::min(cells, double(kFinestGrid * (mesh - 1)))) + 1);
+    if (cells <= kFinestGrid * (mesh - 1)) vertices = std::max(vertices, int(cells) + 1);
   }
   return vertices;
 }
