@@ -297,11 +297,12 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   // A circle too small for the grid to follow, even at its finest (grid_vertices), got less for
   // it: a finer mesh fits more, and a draft is solved on a finer grid (LensSession), so that a
   // drag does not show it unmagnified where the frame at rest magnifies it.
-  const double cell = cell_size(solved_box(out), out);
+  // (The grid's cell only where a circle got less: a drag's frames need not find the groups again.)
+  std::optional<double> grid_cell;
   for (size_t k = 0; k < out.size(); ++k) {
-    if (!lenses[k].region.circle() || lenses[k].region.size() >= 2 * cell ||
-        !short_of(fits[k], lenses[k].zoom, kShortfall))
-      continue;
+    if (!lenses[k].region.circle() || !short_of(fits[k], lenses[k].zoom, kShortfall)) continue;
+    if (!grid_cell) grid_cell = cell_size(solved_box(out), out);
+    if (lenses[k].region.size() >= 2 * *grid_cell) continue;
     fit.mesh_limited = true;
     fit.zoom_fit_reasons[k] = "the mesh (a finer mesh fits more)";
   }
@@ -331,7 +332,8 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
     }
   }
   std::vector<int> on_curve;
-  fit.mesh = base_mesh(out, fit.box, draft, &on_curve);  // fit.box: solved_box(out), as `cell`'s
+  fit.mesh = base_mesh(out, fit.box, draft, &on_curve);
+  const double cell = cell_size(fit.box, out);
   const std::vector<double> unfolding =
       unfolding_zooms(fit.mesh, out, cell, focus_band(out, cell), c_.width, c_.height, *c_.pool);
   if (memo)
