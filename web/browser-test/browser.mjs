@@ -140,3 +140,22 @@ export async function dragFirstLens(page, framesPerMove) {
   assert.ok(Math.hypot(at.x - from.x - by.x, at.y - from.y - by.y) < 0.01);
   return { lens, moved, frames };
 }
+
+/**
+ * An RGB picture (width x height x 3 bytes) with detail at every scale: a smooth wave, 8 px
+ * checks and per-pixel noise (a different channel each), so that any difference in sampling shows.
+ */
+export function knownPicture(width, height) {
+  const pixels = new Uint8Array(width * height * 3);
+  let seed = 12345;
+  const random = () => (seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32;
+  for (let y = 0; y < height; ++y) {
+    for (let x = 0; x < width; ++x) {
+      const i = 3 * (y * width + x);
+      pixels[i] = Math.round(128 + 100 * Math.sin(x / 7 + y / 11));
+      pixels[i + 1] = ((x >> 3) + (y >> 3)) % 2 ? 200 : 40;
+      pixels[i + 2] = Math.floor(random() * 256);
+    }
+  }
+  return pixels;
+}

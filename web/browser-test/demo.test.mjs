@@ -11,7 +11,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
   start, openDemo, nextFrame, viewIdle, readCanvas, pagePoint, repoRoot, firstLens, recordFrames,
-  dragFirstLens,
+  dragFirstLens, knownPicture,
 } from './browser.mjs';
 import { encodePng, decodePng } from './png.mjs';
 
@@ -75,23 +75,6 @@ test('(b) a scripted drag moves the lens: drafts, then the full mesh at rest', a
     await context.close();
   }
 });
-
-// A 400 x 300 picture with detail at every scale: a smooth wave, 8 px checks and per-pixel noise
-// (a different channel each), so that any difference in sampling shows.
-function knownPicture(width, height) {
-  const pixels = new Uint8Array(width * height * 3);
-  let seed = 12345;
-  const random = () => (seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32;
-  for (let y = 0; y < height; ++y) {
-    for (let x = 0; x < width; ++x) {
-      const i = 3 * (y * width + x);
-      pixels[i] = Math.round(128 + 100 * Math.sin(x / 7 + y / 11));
-      pixels[i + 1] = ((x >> 3) + (y >> 3)) % 2 ? 200 : 40;
-      pixels[i + 2] = Math.floor(random() * 256);
-    }
-  }
-  return pixels;
-}
 
 // Two RGBA pictures' difference over a focus: the disc about (cx, cy) of the radius given, shrunk
 // by 3 px to leave out its edge; the largest and mean over the colour channels' values.

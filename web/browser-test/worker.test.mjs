@@ -13,7 +13,7 @@ import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
-  start, openDemo, readCanvas, pagePoint, firstLens, dragFirstLens,
+  start, openDemo, readCanvas, pagePoint, firstLens, dragFirstLens, knownPicture,
 } from './browser.mjs';
 import { encodePng } from './png.mjs';
 
@@ -90,22 +90,6 @@ test("worker mode: pick at the lens's centre gives its source point within 0.5 p
       await context.close();
     }
   });
-
-// A 400 x 300 picture with detail at every scale (as demo.test.mjs's).
-function knownPicture(width, height) {
-  const pixels = new Uint8Array(width * height * 3);
-  let seed = 12345;
-  const random = () => (seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32;
-  for (let y = 0; y < height; ++y) {
-    for (let x = 0; x < width; ++x) {
-      const i = 3 * (y * width + x);
-      pixels[i] = Math.round(128 + 100 * Math.sin(x / 7 + y / 11));
-      pixels[i + 1] = ((x >> 3) + (y >> 3)) % 2 ? 200 : 40;
-      pixels[i + 2] = Math.floor(random() * 256);
-    }
-  }
-  return pixels;
-}
 
 test('worker mode: the focus equals the page-thread mode within 1 grey level', async () => {
   const [width, height] = [400, 300];
