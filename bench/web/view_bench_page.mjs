@@ -161,12 +161,9 @@ function program(gl, vertexText, fragmentText) {
   return p;
 }
 
-// The floor's drawing state, with the same context attributes and texture as the view's.
-function floorSetup(picture) {
-  const gl = (floorGl = canvas.getContext('webgl2', {
-    alpha: true, premultipliedAlpha: true, antialias: false, depth: false, stencil: false,
-  }));
-  const p = program(gl, QUAD_VERTEX, QUAD_FRAGMENT);
+// The unit square's two triangles as program p's a_corner, in a vertex array of their own (bound
+// on return).
+function quadVao(gl, p) {
   const vao = gl.createVertexArray();
   gl.bindVertexArray(vao);
   gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
@@ -175,6 +172,16 @@ function floorSetup(picture) {
   const corner = gl.getAttribLocation(p, 'a_corner');
   gl.enableVertexAttribArray(corner);
   gl.vertexAttribPointer(corner, 2, gl.FLOAT, false, 0, 0);
+  return vao;
+}
+
+// The floor's drawing state, with the same context attributes and texture as the view's.
+function floorSetup(picture) {
+  const gl = (floorGl = canvas.getContext('webgl2', {
+    alpha: true, premultipliedAlpha: true, antialias: false, depth: false, stencil: false,
+  }));
+  const p = program(gl, QUAD_VERTEX, QUAD_FRAGMENT);
+  const vao = quadVao(gl, p);
   const texture = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, texture);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl[floorMinFilter]);
@@ -471,14 +478,7 @@ function gpuVariants(view) {
   }
   // The floor's quad.
   const quad = program(gl, QUAD_VERTEX, QUAD_FRAGMENT);
-  const quadVao = gl.createVertexArray();
-  gl.bindVertexArray(quadVao);
-  gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
-  gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([0, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1, 1]),
-    gl.STATIC_DRAW);
-  const corner = gl.getAttribLocation(quad, 'a_corner');
-  gl.enableVertexAttribArray(corner);
-  gl.vertexAttribPointer(corner, 2, gl.FLOAT, false, 0, 0);
+  const quadArray = quadVao(gl, quad);
   gl.bindVertexArray(null);
   const rect = [(2 * ox) / W - 1, 1 - (2 * oy) / H, (2 * (ox + width * scale)) / W - 1,
     1 - (2 * (oy + height * scale)) / H];
@@ -556,7 +556,7 @@ function gpuVariants(view) {
       gl.uniform4fv(gl.getUniformLocation(quad, 'u_rect'), rect);
       texture();
       gl.uniform1i(gl.getUniformLocation(quad, 'u_picture'), 0);
-      gl.bindVertexArray(quadVao);
+      gl.bindVertexArray(quadArray);
       gl.drawArrays(gl.TRIANGLES, 0, 6);
       gl.bindVertexArray(null);
     },
