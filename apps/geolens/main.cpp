@@ -111,7 +111,8 @@ int run_magnify(const MagnifyArgs& a) {
   RunTimings timings;
   Lap lap;
   std::optional<VectorData> overlay =
-      a.overlay.empty() ? std::nullopt : std::optional(read_geojson(a.overlay));
+      a.overlay.empty() ? std::nullopt
+                        : std::optional(read_geojson(a.overlay, cli::max_points(a.source)));
   const SourceFile source = cli::open_input(a.input, a.source);
   // Over a vector map the overlay is in degrees, placed on its frame.
   if (overlay && source.map_frame)

@@ -98,7 +98,8 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
       ->capture_default_str();
   c->add_option("--format", a.format, "csv or geojson (default: from the file extension)");
   c->add_option("--max-points", a.max_points,
-                "the most points a CSV input may hold, in [1, 2^30]; default " +
+                "the most points a CSV input, or positions a GeoJSON input or --image vector map, "
+                "may hold, in [1, 2^30]; default " +
                     std::to_string(kMaxCsvPoints) + " (2^22; 2^22 took 0.8 GB)");
   return c;
 }
@@ -157,9 +158,12 @@ int run_map(const MapArgs& a) {
   // A hundredth of a pixel is finer than any output shows; 5e-5 made 8.4 GB of a 4.6 KB file.
   require(a.max_segment >= 0.01, "--max-segment",
           "must be at least 0.01 pixels, got " + number_text(a.max_segment));
-  const size_t max_points = a.max_points.empty()
-                                ? kMaxCsvPoints
-                                : size_t(parse_count(a.max_points, "--max-points", 1, 1u << 30));
+  cli::SourceArgs source_args;  // of --image
+  source_args.size = a.size;
+  source_args.style = a.style;
+  source_args.max_points = a.max_points;
+  static_assert(kMaxCsvPoints == kMaxGeoJsonPoints, "one default for --max-points");
+  const size_t max_points = cli::max_points(source_args);
   RunFiles files;
   const cli::RemoveOnInterrupt interrupt(files);
   add_map_files(files, a);
@@ -170,7 +174,8 @@ int run_map(const MapArgs& a) {
     data = a.input == "-" ? parse_point_csv(standard_input(), name, max_points)
                           : read_point_csv(a.input, max_points);
   else
-    data = a.input == "-" ? parse_geojson(standard_input(), name) : read_geojson(a.input);
+    data = a.input == "-" ? parse_geojson(standard_input(), name, max_points)
+                          : read_geojson(a.input, max_points);
   const LensOptions options = cli::parse_options(a.lens);
   std::pair<int, int> source_size, output_size;
   std::optional<MapFrame> degrees;  // a vector map's frame: the source side is in degrees
@@ -178,9 +183,6 @@ int run_map(const MapArgs& a) {
   if (!a.image.empty()) {
     // Any source file: its frame is what the lenses are placed on (--size frames one without
     // pixels of its own).
-    cli::SourceArgs source_args;
-    source_args.size = a.size;
-    source_args.style = a.style;
     const SourceFile image = cli::open_input(a.image, source_args);
     source_size = {image.frame_width, image.frame_height};
     if (a.size.empty()) output_size = source_size;

@@ -21,7 +21,7 @@ struct MapArgs {
   std::string format;    ///< csv or geojson; "" = from the input's (or output's) extension
   bool inverse = false;  ///< screen -> source instead of source -> screen
   double max_segment = MapOptions{}.max_segment;  ///< densify lines and rings, input pixels
-  std::string max_points;  ///< --max-points N, a CSV input's; "" = kMaxCsvPoints
+  std::string max_points;  ///< --max-points N, a CSV or GeoJSON input's; "" = kMaxCsvPoints
   cli::LensArgs lens;      ///< the same lens options as `magnify`
 };
 

@@ -20,6 +20,14 @@ void add_source_options(CLI::App& command, SourceArgs& a, const std::string& siz
                      "the most voxels a volume input (NIfTI, NRRD) may have (refused from its "
                      "header above it; each takes 4 bytes), in [1, 2^36]; default 268435456 "
                      "(2^28)");
+  command.add_option("--max-vertices", a.max_vertices,
+                     "the most vertices a 3D mesh input (OBJ, PLY) may have (a file of more than "
+                     "128 bytes a vertex is refused unread), in [1, 2^34]; default 4194304 (2^22)");
+  command.add_option("--max-points", a.max_points,
+                     "the most positions a GeoJSON input (a vector map, --overlay) may hold (a "
+                     "file of more than 16 bytes a position is refused unread), in [1, 2^30]; "
+                     "default " +
+                         std::to_string(kMaxGeoJsonPoints) + " (2^22)");
 }
 
 void add_source_inputs(RunFiles& files, const std::string& input, const SourceArgs& a) {
@@ -44,7 +52,15 @@ SourceFile open_input(const std::string& input, const SourceArgs& a) {
     options.max_pixels = parse_count(a.max_pixels, "--max-pixels", 1, uint64_t(1) << 40);
   if (!a.max_voxels.empty())
     options.max_voxels = parse_count(a.max_voxels, "--max-voxels", 1, uint64_t(1) << 36);
+  if (!a.max_vertices.empty())
+    options.max_vertices = parse_count(a.max_vertices, "--max-vertices", 1, uint64_t(1) << 34);
+  options.max_points = max_points(a);
   return open_source(input, options);
+}
+
+size_t max_points(const SourceArgs& a) {
+  return a.max_points.empty() ? kMaxGeoJsonPoints
+                              : size_t(parse_count(a.max_points, "--max-points", 1, 1u << 30));
 }
 
 std::pair<int, int> output_size(const SourceFile& file, const SourceArgs& a) {

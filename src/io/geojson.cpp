@@ -1,5 +1,6 @@
 #include "geolens/io/geojson.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "geolens/core/errors.h"
@@ -37,7 +38,7 @@ std::optional<GeometryType> geometry_type(const std::string& name) {
 // Builds the model from the JSON tree; every failure names the document and where in it.
 class Reader {
  public:
-  explicit Reader(std::string name) : name_(std::move(name)) {}
+  Reader(std::string name, size_t max_points) : name_(std::move(name)), max_points_(max_points) {}
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw InvalidInput("parse_geojson: '" + name_ + "': " + where + ": " + what);
@@ -60,7 +61,16 @@ class Reader {
     return *a;
   }
 
-  Eigen::RowVector2d position(const Json& j, const std::string& where) const {
+  // Counts `n` more positions read, refusing more than max_points in all.
+  void count(size_t n, const std::string& where) {
+    points_ += n;
+    if (points_ > max_points_)
+      fail(where, "more than the " + std::to_string(max_points_) +
+                      " positions read in all (max_points; --max-points raises it)");
+  }
+
+  Eigen::RowVector2d position(const Json& j, const std::string& where) {
+    count(1, where);
     if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
       fail(where, "expected a position [x, y] of two numbers, got " + excerpt(j) +
                       (j.is_array() && j.size() > 2 ? " (altitude is not supported)" : ""));
@@ -69,7 +79,7 @@ class Reader {
     return p;
   }
 
-  Eigen::MatrixX2d positions(const Json& j, const std::string& where) const {
+  Eigen::MatrixX2d positions(const Json& j, const std::string& where) {
     if (!j.is_array()) fail(where, "expected an array of positions, got " + excerpt(j));
     Eigen::MatrixX2d P(Eigen::Index(j.size()), 2);
     for (size_t k = 0; k < j.size(); ++k)
@@ -77,7 +87,7 @@ class Reader {
     return P;
   }
 
-  Geometry geometry(const Json& j, const std::string& where) const {
+  Geometry geometry(const Json& j, const std::string& where) {
     const std::string name = type(j, where);
     const std::optional<GeometryType> type_named = geometry_type(name);
     if (!type_named) fail(where, "unknown geometry type \"" + name + "\"");
@@ -122,7 +132,7 @@ class Reader {
     return g;
   }
 
-  Feature feature(const Json& j, const std::string& where) const {
+  Feature feature(const Json& j, const std::string& where) {
     const std::string name = type(j, where);
     if (name != "Feature") fail(where, "expected a Feature, got \"" + name + "\"");
     Feature f;
@@ -145,7 +155,7 @@ class Reader {
     return f;
   }
 
-  VectorData document(const std::string& text) const {
+  VectorData document(const std::string& text) {
     if (const size_t depth = json_depth(text); depth > kMaxJsonDepth)
       fail("the document", "nested " + std::to_string(depth) + " levels deep; at most " +
                                std::to_string(kMaxJsonDepth) + " are read");
@@ -173,6 +183,7 @@ class Reader {
 
  private:
   std::string name_;
+  size_t max_points_, points_ = 0;
 };
 
 Json position_json(const Eigen::MatrixX2d& P, Eigen::Index i) {
@@ -264,15 +275,23 @@ size_t json_depth(const std::string& text) {
   return deepest;
 }
 
-VectorData parse_geojson(const std::string& text, const std::string& name) {
-  require(text.size() <= kMaxGeoJsonBytes, "parse_geojson",
-          "'" + name + "' is larger than the " + std::to_string(kMaxGeoJsonBytes >> 20) +
-              " MiB a GeoJSON text may hold");
-  return Reader(name).document(text);
+size_t geojson_bytes_limit(size_t max_points) {
+  return std::max(kMaxGeoJsonBytes, std::min(max_points, size_t(1) << 36) * 16);
 }
 
-VectorData read_geojson(const std::string& path) {
-  return parse_geojson(read_file(path, "read_geojson", "GeoJSON", kMaxGeoJsonBytes), path);
+VectorData parse_geojson(const std::string& text, const std::string& name, size_t max_points) {
+  require(max_points >= 1, "parse_geojson", "max_points must be >= 1, got 0");
+  require(text.size() <= geojson_bytes_limit(max_points), "parse_geojson",
+          "'" + name + "' is larger than the " +
+              std::to_string(geojson_bytes_limit(max_points) >> 20) +
+              " MiB a GeoJSON text may hold (16 bytes a point of max_points, at least 64 MiB)");
+  return Reader(name, max_points).document(text);
+}
+
+VectorData read_geojson(const std::string& path, size_t max_points) {
+  require(max_points >= 1, "read_geojson", "max_points must be >= 1, got 0");
+  return parse_geojson(read_file(path, "read_geojson", "GeoJSON", geojson_bytes_limit(max_points)),
+                       path, max_points);
 }
 
 std::string geojson_text(const VectorData& data) {

@@ -17,8 +17,6 @@ namespace geolens {
 
 namespace {
 
-constexpr size_t kMaxObjBytes = size_t(512) << 20;  ///< about ten million triangles
-
 /// The first line of tinyobjloader's message, without its trailing newline.
 std::string first_line(const std::string& text) {
   const size_t end = text.find('\n');
@@ -27,10 +25,12 @@ std::string first_line(const std::string& text) {
 
 // Refuses what tinyobjloader reads without a word: a vertex coordinate that is not a finite
 // number ("v nan 0 0" was accepted) and a face index beyond int's range (one of 20 digits was
-// read as some other vertex).
-void check_numbers(const std::string& text, const std::string& path) {
+// read as some other vertex), and more than `max_vertices` vertices, before tinyobjloader
+// holds them.
+void check_numbers(const std::string& text, const std::string& path, size_t max_vertices) {
   std::istringstream lines(text);
   std::string line;
+  size_t vertices = 0;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
     std::string kind, word;
@@ -55,15 +55,19 @@ void check_numbers(const std::string& text, const std::string& path) {
     }
     require(kind != "v" || k >= 3, "load_obj",
             at + "a vertex has " + std::to_string(k) + " coordinates, 3 needed");
+    vertices += kind == "v";
+    require(vertices <= max_vertices, "load_obj",
+            at + vertex_limit_message(vertices, max_vertices));
   }
 }
 
 }  // namespace
 
-TriangleMesh load_obj(const std::string& path) {
+TriangleMesh load_obj(const std::string& path, size_t max_vertices) {
   const char* f = "load_obj";
-  const std::string text = read_file(path, f, "OBJ", kMaxObjBytes);
-  check_numbers(text, path);
+  require(max_vertices >= 1, f, "max_vertices must be >= 1, got 0");
+  const std::string text = read_file(path, f, "OBJ", mesh_bytes_limit(max_vertices));
+  check_numbers(text, path, max_vertices);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

@@ -16,7 +16,6 @@ namespace geolens {
 namespace {
 
 constexpr const char* kFn = "load_ply";
-constexpr size_t kMaxPlyBytes = size_t(512) << 20;  ///< about twenty million binary triangles
 
 enum class Format { ascii, little_endian, big_endian };
 
@@ -362,12 +361,15 @@ void finish_mesh(const std::vector<Eigen::Vector3i>& triangles, bool normals, Tr
 
 }  // namespace
 
-TriangleMesh load_ply(const std::string& path) {
-  const std::string text = read_file(path, kFn, "PLY", kMaxPlyBytes);
+TriangleMesh load_ply(const std::string& path, size_t max_vertices) {
+  require(max_vertices >= 1, kFn, "max_vertices must be >= 1, got 0");
+  const std::string text = read_file(path, kFn, "PLY", mesh_bytes_limit(max_vertices));
   const std::string where = "'" + path + "': ";
   const Header header = read_header(text, where);
   check_row_counts(header, text.size(), where);
   const Layout layout = find_layout(header.elements, where);
+  require(uint64_t(layout.vertex->count) <= max_vertices, kFn,
+          where + vertex_limit_message(uint64_t(layout.vertex->count), max_vertices));
 
   TriangleMesh mesh;
   mesh.V.resize(Eigen::Index(layout.vertex->count), 3);

@@ -17,7 +17,8 @@ namespace geolens {
 /// header line, or the element and row, at fault: a malformed header, a missing x/y/z or face
 /// list, an x, y, z, nx, ny or nz declared a list, a row with too few values, a face with fewer
 /// than 3 corners or naming a missing vertex, data that ends before the header's counts, and a mesh
-/// with no face.
-TriangleMesh load_ply(const std::string& path);
+/// with no face, more than `max_vertices` vertices (>= 1; refused from the header) and a file over
+/// mesh_bytes_limit(max_vertices).
+TriangleMesh load_ply(const std::string& path, size_t max_vertices = kMaxMeshVertices);
 
 }  // namespace geolens

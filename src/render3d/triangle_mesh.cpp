@@ -74,4 +74,9 @@ void bounding_sphere(const TriangleMesh& mesh, Eigen::Vector3d& centre, double& 
   radius = std::max(radius, 1e-9 * std::max(1.0, centre.norm()));
 }
 
+std::string vertex_limit_message(uint64_t vertices, size_t max_vertices) {
+  return std::to_string(vertices) + " vertices, more than the " + std::to_string(max_vertices) +
+         " read (max_vertices; --max-vertices raises it)";
+}
+
 }  // namespace geolens

@@ -2,6 +2,9 @@
 // A triangle mesh in 3D (what a mesh file holds), its normals and its bounding sphere.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace geolens {
@@ -12,6 +15,19 @@ struct TriangleMesh {
   Eigen::MatrixXi F;  ///< #F x 3 vertex indices into V, counter-clockwise seen from outside
   Eigen::MatrixXd N;  ///< #V x 3 unit vertex normals from the file, or 0 x 3 (none given)
 };
+
+/// The most vertices the mesh readers (load_obj, load_ply) read by default: 2^22 (4 194 304, about
+/// eight million triangles); they take another limit (--max-vertices).
+inline constexpr size_t kMaxMeshVertices = size_t(1) << 22;
+
+/// The most bytes of a mesh file read with a limit of `max_vertices`: 128 a vertex (a vertex and
+/// its two triangles as text), at least 512 MiB.
+inline size_t mesh_bytes_limit(size_t max_vertices) {
+  return std::max(size_t(512) << 20, std::min(max_vertices, size_t(1) << 36) * 128);
+}
+
+/// What a reader says of a mesh of `vertices` over `max_vertices`, naming the limit.
+std::string vertex_limit_message(uint64_t vertices, size_t max_vertices);
 
 /// #F x 3 unit face normals by the right-hand rule (counter-clockwise = towards the viewer); a
 /// zero row for a degenerate (zero-area) face.

@@ -40,7 +40,9 @@ SourceFile open_mesh_source(const std::string& path, const SourceFileOptions& op
   }
   const int width = options.width == 0 ? 1024 : options.width;
   const int height = options.height == 0 ? 1024 : options.height;
-  TriangleMesh loaded = ext == ".obj" ? load_obj(path) : load_ply(path);
+  const size_t max_vertices =
+      options.max_vertices > 0 ? size_t(options.max_vertices) : kMaxMeshVertices;
+  TriangleMesh loaded = ext == ".obj" ? load_obj(path, max_vertices) : load_ply(path, max_vertices);
   return mesh_source(std::move(loaded), width, height, chosen);
 }
 

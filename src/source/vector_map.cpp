@@ -430,7 +430,7 @@ SourceFile vector_map_source(const VectorData& data, const MapStyle& style, int 
 SourceFile open_vector_map(const std::string& path, const SourceFileOptions& options) {
   const MapStyle style =
       options.style.empty() ? default_map_style() : read_map_style(options.style);
-  const VectorData data = read_geojson(path);
+  const VectorData data = read_geojson(path, options.max_points);
   try {
     return vector_map_source(data, style, options.width, options.height);
   } catch (const InvalidInput& e) {

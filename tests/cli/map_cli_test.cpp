@@ -160,6 +160,9 @@ TEST_F(MapCli, RefusesBadInputWithOneLineAndExitTwo) {
   for (const char* bad : {"0", "-1", "1.5", "2e9", "nan"})
     expect_refused("map " + path("in.csv") + size + " --max-points " + bad,
                    "--max-points: must be");
+  // The same limit on a GeoJSON input's positions (a CSV's points are a GeoJSON's positions).
+  expect_refused("map " + path("in.geojson") + size + " --max-points 1 -o " + path("out.geojson"),
+                 "positions read in all (max_points; --max-points raises it)");
   expect_refused("map " + path("in.csv") + " --image " + path("missing.png") + kLens,
                  "missing.png");
   expect_refused("map " + path("in.csv") + " --size 512x384 --lens circle:700,96,30", "outside");
@@ -214,6 +217,13 @@ TEST_F(MapCli, OnAVectorMapTheSourceSideIsInDegrees) {
   expect_refused("map " + path("cities.csv") + " --size 800x600 --style " + style +
                      " --lens circle:300,300,50:2",
                  "--style: is the style of an --image vector map");
+  // --max-points bounds the --image vector map's positions too, and magnify's.
+  expect_refused(
+      "map " + path("cities.csv") + image + " --lens circle:300,300,50:2 --max-points 10",
+      "(max_points; --max-points raises it)");
+  expect_refused("magnify " + europe + " --style " + style + " --size 800x600" +
+                     " --lens circle:700,100,10 -o " + path("map.png") + " --max-points 10",
+                 "europe.geojson': feature 0");
 }
 
 TEST_F(MapCli, MagnifyDrawsTheOverlay) {
@@ -241,6 +251,11 @@ TEST_F(MapCli, MagnifyDrawsTheOverlay) {
                  "bad.geojson");
   expect_refused(magnify + " -o " + path("out.png") + " --overlay " + path("missing.geojson"),
                  "missing.geojson");
+  // An overlay's positions are bounded by --max-points, named.
+  expect_refused(
+      magnify + " -o " + path("out.png") + " --overlay " + path("in.geojson") + " --max-points 1",
+      "in.geojson': feature 0 LineString coordinates[1]: more than the 1 positions "
+      "read in all (max_points; --max-points raises it)");
 }
 
 }  // namespace

@@ -125,6 +125,16 @@ TEST_F(Scene3dCli, RefusesBad3dInputsInOneLine) {
   expect_refused("magnify " + path("huge.nrrd") + lens,
                  "sizes: 65536 65536 3): 12884901888 voxels, more than the 268435456 read "
                  "(max_voxels; --max-voxels raises it)");
+  // A mesh's vertices are bounded the same way: the cube's 8 are refused at --max-vertices 7
+  // (naming the line of the 8th) and read at 8.
+  write_cube();
+  expect_refused(
+      "magnify " + path("cube.obj") + lens + " --max-vertices 7",
+      "line 8: 8 vertices, more than the 7 read (max_vertices; --max-vertices raises it)");
+  EXPECT_EQ(run("magnify " + path("cube.obj") + lens + " --max-vertices 8").code, 0);
+  for (const char* bad : {"0", "-5", "0.5", "1e30"})
+    expect_refused("magnify " + path("cube.obj") + lens + " --max-vertices " + bad,
+                   "--max-vertices: must be");
   // The limit is an option: a 4 x 4 x 4 volume is refused at --max-voxels 63 and read at 64.
   write("cube.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n" +
                          std::string(64, '\x40'));

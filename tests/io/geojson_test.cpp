@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "support/refusal.h"
 #include "support/scratch_folder.h"
 #include "support/vector_data.h"
 
@@ -273,8 +274,32 @@ TEST_F(GeoJsonFile, ALargerFileThanTheBoundIsRefusedUnread) {
     ADD_FAILURE() << "accepted";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()),
-              "parse_geojson: 'standard input' is larger than the 64 MiB a GeoJSON text may hold");
+              "parse_geojson: 'standard input' is larger than the 64 MiB a GeoJSON text may hold "
+              "(16 bytes a point of max_points, at least 64 MiB)");
   }
+  // A limit of more points reads a larger file: the 65 MiB of zeros are read, and are not JSON.
+  EXPECT_EQ(geojson_bytes_limit(kMaxGeoJsonPoints), kMaxGeoJsonBytes);
+  EXPECT_EQ(geojson_bytes_limit(size_t(1) << 23), size_t(128) << 20);
+  EXPECT_NE(test::refusal([&] { read_geojson(big, size_t(1) << 23); }).find("not JSON"),
+            std::string::npos);
+}
+
+// max_points bounds the positions read, in all the features, named in the refusal: the four
+// positions below are read at 4 and refused at 3 where the fourth is; the limit is at least 1.
+TEST_F(GeoJsonFile, MaxPointsIsALimitThatNamesItself) {
+  const std::string file = path("four.geojson");
+  std::ofstream(file) << R"({"type":"FeatureCollection","features":[)"
+                      << R"({"type":"Feature","properties":null,"geometry":)"
+                      << R"({"type":"LineString","coordinates":[[0,0],[1,0],[1,1]]}},)"
+                      << R"({"type":"Feature","properties":null,"geometry":)"
+                      << R"({"type":"Point","coordinates":[5,5]}}]})";
+  EXPECT_EQ(read_geojson(file, 4).features.size(), 2u);
+  EXPECT_EQ(test::refusal([&] { read_geojson(file, 3); }),
+            "parse_geojson: '" + file +
+                "': feature 1 Point coordinates: more than the 3 positions read in all "
+                "(max_points; --max-points raises it)");
+  EXPECT_NE(test::refusal([&] { read_geojson(file, 0); }).find("max_points must be >= 1"),
+            std::string::npos);
 }
 
 TEST(GeoJson, WritingRefusesInvalidData) {

@@ -137,5 +137,21 @@ TEST_F(ObjFile, RefusesBadFilesNamingTheReaderAndTheFile) {
   EXPECT_NE(message.find(nowhere), std::string::npos) << message;
 }
 
+// max_vertices bounds the vertices read, named in the refusal with the line of the first vertex
+// over it, before tinyobjloader holds them: four are read at 4 and refused at 3.
+TEST_F(ObjFile, MaxVerticesIsALimitThatNamesItself) {
+  const std::string file =
+      write("four.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n");
+  EXPECT_EQ(load_obj(file, 4).V.rows(), 4);
+  EXPECT_EQ(test::refusal([&] { load_obj(file, 3); }),
+            "load_obj: '" + file +
+                "': line 4: 4 vertices, more than the 3 read (max_vertices; --max-vertices raises "
+                "it)");
+  EXPECT_NE(test::refusal([&] { load_obj(file, 0); }).find("max_vertices must be >= 1"),
+            std::string::npos);
+  EXPECT_EQ(mesh_bytes_limit(kMaxMeshVertices), size_t(512) << 20);
+  EXPECT_EQ(mesh_bytes_limit(size_t(1) << 23), size_t(1) << 30);
+}
+
 }  // namespace
 }  // namespace geolens

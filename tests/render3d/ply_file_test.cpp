@@ -124,6 +124,23 @@ TEST_F(PlyFile, AnAsciiFileReadsItsPositionsAndFacesExactlyWhateverItsLineEnds) 
   EXPECT_EQ(crlf.V(2, 1), 1);
 }
 
+// max_vertices bounds the vertices read, refused from the header's count before any row is read:
+// the pyramid's five are read at 5 and refused at 4, ASCII or binary.
+TEST_F(PlyFile, MaxVerticesIsALimitThatNamesItself) {
+  for (const char* format : {"ascii", "binary_little_endian"}) {
+    const std::string file = write(std::string(format) + ".ply", pyramid(format));
+    EXPECT_EQ(load_ply(file, 5).V.rows(), 5) << format;
+    EXPECT_EQ(test::refusal([&] { load_ply(file, 4); }),
+              "load_ply: '" + file +
+                  "': 5 vertices, more than the 4 read (max_vertices; --max-vertices raises it)")
+        << format;
+  }
+  EXPECT_NE(test::refusal([&] {
+              load_ply(write("zero.ply", pyramid("ascii")), 0);
+            }).find("max_vertices must be >= 1"),
+            std::string::npos);
+}
+
 TEST_F(PlyFile, ABinaryFileReadsAsItsAsciiTwin) {
   const TriangleMesh ascii = load_ply(write("ascii.ply", pyramid("ascii")));
   for (const char* format : {"binary_little_endian", "binary_big_endian"}) {

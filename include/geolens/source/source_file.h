@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "geolens/io/geojson.h"
 #include "geolens/io/image.h"
 #include "geolens/source/map_style.h"
 #include "geolens/source/source.h"
@@ -34,6 +35,11 @@ struct SourceFileOptions {
   /// volume (NIfTI, NRRD): the most voxels read (--max-voxels), >= 1; 0: the readers' default,
   /// 2^28 (render3d's kMaxVoxels, not an installed header)
   uint64_t max_voxels = 0;
+  /// 3D mesh (OBJ, PLY): the most vertices read (--max-vertices), >= 1; 0: the readers' default,
+  /// 2^22 (render3d's kMaxMeshVertices)
+  uint64_t max_vertices = 0;
+  /// vector map (GeoJSON): the most positions read (--max-points), >= 1
+  uint64_t max_points = kMaxGeoJsonPoints;
 };
 
 /// A source opened from a file, and the frame lenses are placed in. Lenses, the solved mesh's
