@@ -1111,16 +1111,31 @@ int unfold(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3
       if (lens.region.distance(V.row(i).transpose()) <= band) return false;
     return true;
   };
+  // The triangles at each vertex, in increasing order (made on the first fold), and the
+  // triangles that may be folded in a round: every one in the first, then those folded or at a
+  // vertex moved in the round before (no other changed), in increasing order, so each round
+  // finds what a look at every triangle would, in the same order.
+  std::vector<std::vector<Eigen::Index>> at;
+  std::vector<Eigen::Index> candidates;
   for (int round = 0;; ++round) {
-    std::vector<Eigen::Index> moved, back;
-    int folds = 0;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      if (area2(X, F, f) > 0) continue;
-      ++folds;
+    std::vector<Eigen::Index> moved, back, folded;
+    auto look = [&](Eigen::Index f) {
+      if (area2(X, F, f) > 0) return;
+      folded.push_back(f);
       const bool goes_back = round >= kMeanRounds || (slivers_back && area2(V, F, f) < sliver);
       for (int k = 0; k < 3; ++k) (goes_back ? back : moved).push_back(F(f, k));
-    }
+    };
+    if (round == 0)
+      for (Eigen::Index f = 0; f < F.rows(); ++f) look(f);
+    else
+      for (const Eigen::Index f : candidates) look(f);
+    const int folds = int(folded.size());
     if (folds == 0 || round == kRounds) return folds;
+    if (at.empty()) {
+      at.resize(size_t(X.rows()));
+      for (Eigen::Index f = 0; f < F.rows(); ++f)
+        for (int k = 0; k < 3; ++k) at[size_t(F(f, k))].push_back(f);
+    }
     for (std::vector<Eigen::Index>* list : {&moved, &back}) {
       std::sort(list->begin(), list->end());
       list->erase(std::unique(list->begin(), list->end()), list->end());
@@ -1130,17 +1145,21 @@ int unfold(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::MatrixX3
     // The mean of each moved vertex's neighbours (each edge counted once per triangle side).
     Eigen::MatrixX2d sum = Eigen::MatrixX2d::Zero(Eigen::Index(moved.size()), 2);
     Eigen::VectorXd count = Eigen::VectorXd::Zero(Eigen::Index(moved.size()));
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-      for (int k = 0; k < 3; ++k) {
-        const auto at = std::lower_bound(moved.begin(), moved.end(), F(f, k));
-        if (at == moved.end() || *at != F(f, k)) continue;
-        const Eigen::Index j = at - moved.begin();
-        sum.row(j) += X.row(F(f, (k + 1) % 3)) + X.row(F(f, (k + 2) % 3));
-        count(j) += 2;
+    for (size_t j = 0; j < moved.size(); ++j) {
+      for (const Eigen::Index f : at[size_t(moved[j])]) {
+        const int k = F(f, 0) == moved[j] ? 0 : F(f, 1) == moved[j] ? 1 : 2;
+        sum.row(Eigen::Index(j)) += X.row(F(f, (k + 1) % 3)) + X.row(F(f, (k + 2) % 3));
+        count(Eigen::Index(j)) += 2;
       }
     }
     for (size_t j = 0; j < moved.size(); ++j)
       X.row(moved[j]) = sum.row(Eigen::Index(j)) / count(Eigen::Index(j));
+    candidates = std::move(folded);
+    for (const std::vector<Eigen::Index>* list : {&moved, &back})
+      for (const Eigen::Index i : *list)
+        candidates.insert(candidates.end(), at[size_t(i)].begin(), at[size_t(i)].end());
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   }
 }
 
