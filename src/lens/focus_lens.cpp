@@ -1297,11 +1297,22 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
                                     ThreadPool& pool) {
   std::vector<double> zooms(lenses.size(), 1.0);
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
-    // The footprints are disjoint, so each group is tried on its own.
-    const Ring ring(group, lenses, cell, band, width, height);
+    // The footprints are disjoint, so each group is tried on its own, at each fraction with the
+    // ring it will be solved with there: its lenses at that zoom, their footprints kept (as
+    // FocusPipeline lowers them), whose slide is the least at that zoom (the ring of the zoom
+    // asked, its slide made for it, held where the one of the lower zoom folded: a jagged polygon
+    // near a side was told it got 1.61 and was magnified 1.20, from the start at a fifth of it).
     for (const double fraction : kZoomFractions) {
+      std::vector<Lens> lowered = lenses;
+      for (size_t k : group.lenses) {
+        lowered[k].footprint = footprint_ratio(lenses[k]);
+        lowered[k].zoom = std::exp(fraction * group.log_zoom);
+      }
       Eigen::MatrixX2d X = mesh.V;
-      apply_ring(X, ring, fraction * group.log_zoom, pool);
+      for (const FocusGroup& part : focus_groups(lowered, width, height))
+        if (std::find(group.lenses.begin(), group.lenses.end(), part.lenses.front()) !=
+            group.lenses.end())
+          apply_ring(X, Ring(part, lowered, cell, band, width, height), part.log_zoom, pool);
       if (relax_folds(X, mesh.V, mesh.F, lenses, cell, band) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
