@@ -388,12 +388,8 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
         if (!flat && ((apex[size_t(a)] && angle(a, y, x) > kMaxApexAngle * (1 + 1e-9)) ||
                       (apex[size_t(b)] && angle(b, y, x) > kMaxApexAngle * (1 + 1e-9))))
           continue;
-        // A side's edges stay; a flat f's flip keeps them (a - b on no side: a footprint's edge
-        // 2e-5 px from the left side made three points of it a triangle of area 4e-20 beside a
-        // vertex of the side).
-        if (flat ? (w.sides[size_t(a)] & w.sides[size_t(b)]) != 0
-                 : along_curve(w, curves, a, b) || w.sides[size_t(a)] || w.sides[size_t(b)] ||
-                       w.sides[size_t(x)] || w.sides[size_t(y)])
+        if ((!flat && along_curve(w, curves, a, b)) || w.sides[size_t(a)] || w.sides[size_t(b)] ||
+            w.sides[size_t(x)] || w.sides[size_t(y)])
           continue;
         w.set_triangle(f, first);
         w.set_triangle(g, second);

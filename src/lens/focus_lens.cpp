@@ -278,7 +278,6 @@ struct Ring {
   Eigen::Vector2d pull = Eigen::Vector2d::Zero();
   double disk_radius, ratio, near, cell, width, height, margin = 0;
   std::vector<double> inner_;          // per bin, or one value for a circle about its centre
-  std::vector<double> extent_;         // per bin, the focus's extent before its envelope
   std::vector<RingDistance> regions_;  // the group's
 
   Ring(const FocusGroup& group, const std::vector<Lens>& lenses, double cell_, double band,
@@ -295,124 +294,8 @@ struct Ring {
     // (A mesh that follows the regions resolves them: its band is a millionth of a cell.)
     for (size_t k : group.lenses)
       if (lenses[k].region.size() < 3 * cell && near > 0.5 * cell) margin = 2 * cell;
-    sampled_ = group.slides && std::any_of(group.lenses.begin(), group.lenses.end(),
-                                           [&](size_t k) { return !lenses[k].region.circle(); });
-    if (sampled_)
-      for (size_t k : group.lenses) sharp_corners(lenses[k].region, corners_);
     if (group.slides && group.log_zoom > 0)
       pull = least_slide(group.log_zoom) / std::expm1(group.log_zoom);
-  }
-
-  // A point of the ring where a slide of a focus that is not a circle is judged (Ring::sampled_),
-  // and the power-law ring's terms there that do not depend on the log zoom L: x (the ring's
-  // parameter, 1 in the focus, 0 at the edge and beyond), lambda = ln(edge / inner) on its ray,
-  // t dx/dt along the ray and the gradient of x (per pixel). The slid power-law ring's Jacobian
-  // determinant over g^2 there is 1 + L t dx/dt + e^(-lambda x) / phi(lambda - L) grad x . v for
-  // a slide v (phi(y) = (1 - e^-y) / y): the ring c + g t u + w v, g = e^(L x), w = x phi((lambda -
-  // L) x) / phi(lambda - L), has det J = g (g + t dg/dt + dw/dx grad x . v). For a circle (x of t
-  // alone) it is the per-ray radial_ratio; near a polygon, where s = inner + d, grad x is not
-  // along the ray and the slide shears the ring across it (a square 40 px from a side, slid, folded
-  // below its edge next to the side's corner).
-  struct Sample {
-    int ray;
-    double x, lambda, t_dx_dt;
-    Eigen::Vector2d grad_x;
-  };
-  // The ring's parameter x at q, in [0, 1], and lambda on q's ray.
-  std::pair<double, double> parameter(const Eigen::Vector2d& q) const {
-    const Place p = place(q);
-    const double lambda = std::log(std::max(p.edge / p.inner, 1 + 1e-9));
-    if (!p.in_footprint()) return {0.0, lambda};
-    return {std::clamp(std::log(p.edge / p.s) / lambda, 0.0, 1.0), lambda};
-  }
-  // The samples: on kSampledRays rays at fixed multiples of the region's extent along each, and
-  // round its sharpest corners (so, for a lens that moves, at the same places of its region: no
-  // kink of the ring moves across a sample, and the slide is continuous in the lens's place); the
-  // derivatives by differences over kStep pixels. Computed once.
-  static constexpr int kSampledRays = 90;
-  static constexpr double kStep = 0.25;  // pixels
-  const std::vector<Sample>& samples() const {
-    if (!samples_.empty()) return samples_;
-    for (int k = 0; k < kSampledRays; ++k) {
-      const double a = 2 * std::numbers::pi * (k + 0.5) / kSampledRays;
-      const Eigen::Vector2d u(std::cos(a), std::sin(a));
-      const Ray r = ray(u);
-      if (!r.in_image || !(r.edge > r.inner)) continue;
-      // From just inside the region's extent on the ray (its nearest bin's), where the slide's
-      // shear across the ray is largest, to half as far again (beyond, the ring is about s = t,
-      // which the rays' own cuts judge).
-      const double extent =
-          extent_.empty() ? r.inner : extent_[size_t(std::lround(turns(u) * kBins)) % kBins];
-      for (double rho = 0.95; rho < 1.5 && rho * extent < r.edge; rho *= 1.08)
-        add_sample(centre + rho * extent * u);
-    }
-    // And round every corner of a polygon, where the distance to the region turns fastest (the
-    // rays pass by a corner's few pixels).
-    for (const Eigen::Vector2d& corner : corners_)
-      for (const double r : {1.0, 2.5})
-        for (int k = 0; k < 8; ++k) {
-          const double a = 2 * std::numbers::pi * (k + 0.5 * (r > 1)) / 8;
-          add_sample(corner + r * Eigen::Vector2d(std::cos(a), std::sin(a)));
-        }
-    return samples_;
-  }
-  // Appends to `corners` the convex corners of the region's outline (if it has one) where it turns
-  // by 30 degrees or more, the sharpest kSampledCorners of them: round those the distance to the
-  // region turns fastest (a simplified outline of a curve turns gently at its many vertices).
-  static constexpr size_t kSampledCorners = 8;
-  static void sharp_corners(const Region& region, std::vector<Eigen::Vector2d>& corners) {
-    const std::optional<std::vector<Eigen::Vector2d>> outline = region.outline();
-    if (!outline) return;
-    const std::vector<Eigen::Vector2d>& v = *outline;
-    const size_t n = v.size();
-    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-      return a.x() * b.y() - a.y() * b.x();
-    };
-    double area = 0;
-    for (size_t i = 0; i < n; ++i) area += cross(v[i], v[(i + 1) % n]);
-    std::vector<std::pair<double, size_t>> turning;  // (turn, vertex)
-    for (size_t i = 0; i < n; ++i) {
-      const Eigen::Vector2d in = v[i] - v[(i + n - 1) % n], out = v[(i + 1) % n] - v[i];
-      const double turn = std::atan2(cross(in, out), in.dot(out));
-      if (turn * area > 0 && std::abs(turn) >= std::numbers::pi / 6)
-        turning.emplace_back(std::abs(turn), i);
-    }
-    const size_t kept = std::min(turning.size(), kSampledCorners);
-    std::partial_sort(turning.begin(), turning.begin() + std::ptrdiff_t(kept), turning.end(),
-                      std::greater<>());
-    for (size_t j = 0; j < kept; ++j) corners.push_back(v[turning[j].second]);
-  }
-  // Adds the sample at q, unless the ring does not change there (in the focus, or beyond the
-  // footprint's edge).
-  void add_sample(const Eigen::Vector2d& q) const {
-    const Eigen::Vector2d w = q - centre;
-    const double t = w.norm();
-    if (!(t > 0)) return;
-    const Eigen::Vector2d u = w / t, tangent(-u.y(), u.x());
-    const auto [x, lambda] = parameter(q);
-    const double along = (parameter(q + kStep * u).first - x) / kStep,
-                 across = (parameter(q + kStep * tangent).first - x) / kStep;
-    if (along == 0 && across == 0) return;
-    const int ray = std::min(int(turns(u) * kSampledRays), kSampledRays - 1);
-    samples_.push_back({ray, x, lambda, t * along, along * u + across * tangent});
-  }
-  // A sample's determinant over g^2 at log zoom L and slide v.
-  static double sample_radial(const Sample& s, double log_zoom, const Eigen::Vector2d& v) {
-    return 1 + log_zoom * s.t_dx_dt +
-           std::exp(-s.lambda * s.x) / one_minus_exp_over(s.lambda - log_zoom) * s.grad_x.dot(v);
-  }
-  // The slide of a focus that is not a circle is judged at samples of the ring (Sample).
-  bool sampled_ = false;
-  mutable std::vector<Sample> samples_;   // computed on first use
-  std::vector<Eigen::Vector2d> corners_;  // of the group's polygons, where sampled_
-  // The least sample_radial on each of the kSampledRays rays at log zoom L and slide v (1 on a
-  // ray without a sample).
-  std::vector<double> sampled_radials(double log_zoom, const Eigen::Vector2d& v) const {
-    std::vector<double> least(kSampledRays, 1.0);
-    for (const Sample& sample : samples())
-      least[size_t(sample.ray)] =
-          std::min(least[size_t(sample.ray)], sample_radial(sample, log_zoom, v));
-    return least;
   }
 
   // The room on the ray along u: the focus's extent and the footprint's edge less `margin`, and
@@ -445,7 +328,7 @@ struct Ring {
         width - centre.x() >= clear && height - centre.y() >= clear &&
         kFitExponent * std::log(ratio) >= log_zoom)
       return Eigen::Vector2d::Zero();
-    std::vector<std::pair<Eigen::Vector2d, double>> cuts;  // (a, the most a.v may be)
+    std::vector<std::pair<Eigen::Vector2d, double>> cuts;  // (u, the most v.u may be)
     bool needed = false;
     for (int k = 0; k < kRays; ++k) {
       const Eigen::Vector2d u = ray_direction(k);
@@ -462,18 +345,6 @@ struct Ring {
     }
     Eigen::Vector2d v = Eigen::Vector2d::Zero();
     if (!needed) return v;
-    if (sampled_) {
-      // sample_radial >= kLeastRadial, a hair inside; each cut over the length of its normal,
-      // so that its violation is in pixels, as the rays' are.
-      for (const Sample& sample : samples()) {
-        const Eigen::Vector2d a = -std::exp(-sample.lambda * sample.x) /
-                                  one_minus_exp_over(sample.lambda - log_zoom) * sample.grad_x;
-        const double length = a.norm();
-        if (!(length > 0)) continue;
-        cuts.emplace_back(a / length,
-                          (1 + log_zoom * sample.t_dx_dt - kLeastRadial) / length - 1e-6 * cell);
-      }
-    }
     constexpr double kStiffness = 1e8;
     auto cost = [&](const Eigen::Vector2d& at) {
       double c = 0.5 * at.squaredNorm();
@@ -517,17 +388,13 @@ struct Ring {
   Room min_ratio(double log_zoom) const {
     Room room;
     const Eigen::Vector2d slide = std::expm1(log_zoom) * pull;
-    const bool slid = slide != Eigen::Vector2d::Zero();
-    const std::vector<double> sampled =
-        slid && sampled_ ? sampled_radials(log_zoom, slide) : std::vector<double>();
     for (int k = 0; k < kRays; ++k) {
       const Eigen::Vector2d u = ray_direction(k);
       const Ray ray_u = ray(u);
       if (!ray_u.in_image) continue;  // leaves at once
       double r = ray_u.edge / ray_u.inner;
-      if (slid && r > 1 + 1e-9) {
-        double radial = radial_ratio(std::log(r), log_zoom, slide.dot(u), ray_u.edge);
-        if (sampled_) radial = std::min(radial, sampled[size_t(k * kSampledRays / kRays)]);
+      if (slide != Eigen::Vector2d::Zero() && r > 1 + 1e-9) {
+        const double radial = radial_ratio(std::log(r), log_zoom, slide.dot(u), ray_u.edge);
         r = radial < 1 ? std::exp(log_zoom / (1 - radial))
                        : std::numeric_limits<double>::infinity();
       }
@@ -614,7 +481,6 @@ struct Ring {
     // decayed one bin a step, swept twice round each way (the kernel is exponential).
     constexpr double kSlope = 0.3;
     const double decay = std::exp(-kSlope * 2 * std::numbers::pi / kBins);
-    extent_ = found;
     inner_ = found;
     for (const int direction : {1, -1}) {
       double running = 0;
@@ -623,16 +489,6 @@ struct Ring {
         running = std::max(running * decay, found[k]);
         inner_[k] = std::max(inner_[k], running);
       }
-    }
-    // Towards an image side the envelope keeps at most half of the room between the region and
-    // the side, so that a region near it keeps a ring (and its slide the room) until it touches
-    // (a square 100 px wide got no zoom within 9 px of a side, its envelope 6 px beyond it).
-    if (!group.slides) return;
-    for (size_t k = 0; k < size_t(kBins); ++k) {
-      const double a = 2 * std::numbers::pi * double(k) / kBins;
-      const double side =
-          ray_exits(centre, Eigen::Vector2d(std::cos(a), std::sin(a)), width, height).minCoeff();
-      inner_[k] = std::max(found[k], std::min(inner_[k], found[k] + 0.5 * (side - found[k])));
     }
   }
 
@@ -821,11 +677,8 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
   if (bounds.max().y() >= height) g.fixed.y() = height;
   g.on_side = !(bounds.min().x() > 0 && bounds.min().y() > 0 && bounds.max().x() < width &&
                 bounds.max().y() < height);
-  // (A mask blob without an outline is held a band of sqrt 2 cells wider, and its fit turns with
-  // the cell, which turns with the footprint its slide grows: an ellipse with a hole slid 36 px
-  // from a side got 1.96, 35 px 1.13. It stays in place.)
   g.slides = !g.on_side && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
-    return lenses[k].region.circle() || lenses[k].region.outline();
+    return lenses[k].region.circle().has_value();
   });
   // The footprint, the focus scaled by the ratio about that point, lies within the disk of
   // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
@@ -1302,22 +1155,11 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
                                     ThreadPool& pool) {
   std::vector<double> zooms(lenses.size(), 1.0);
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
-    // The footprints are disjoint, so each group is tried on its own, at each fraction with the
-    // ring it will be solved with there: its lenses at that zoom, their footprints kept (as
-    // FocusPipeline lowers them), whose slide is the least at that zoom (the ring of the zoom
-    // asked, its slide made for it, held where the one of the lower zoom folded: a jagged polygon
-    // near a side was told it got 1.61 and was magnified 1.20, from the start at a fifth of it).
+    // The footprints are disjoint, so each group is tried on its own.
+    const Ring ring(group, lenses, cell, band, width, height);
     for (const double fraction : kZoomFractions) {
-      std::vector<Lens> lowered = lenses;
-      for (size_t k : group.lenses) {
-        lowered[k].footprint = footprint_ratio(lenses[k]);
-        lowered[k].zoom = std::exp(fraction * group.log_zoom);
-      }
       Eigen::MatrixX2d X = mesh.V;
-      for (const FocusGroup& part : focus_groups(lowered, width, height))
-        if (std::find(group.lenses.begin(), group.lenses.end(), part.lenses.front()) !=
-            group.lenses.end())
-          apply_ring(X, Ring(part, lowered, cell, band, width, height), part.log_zoom, pool);
+      apply_ring(X, ring, fraction * group.log_zoom, pool);
       if (relax_folds(X, mesh.V, mesh.F, lenses, cell, band) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;

@@ -69,7 +69,7 @@ double rim_distortion_bound(double zoom, double ratio);
 /// about the centre of their peaks, or where the regions cross a side of the width x height image
 /// (pixels), about the point of that side nearest it (so the side stays); its reach is the
 /// farthest point of any of the regions from the centre, its footprint the largest ratio of
-/// theirs. A lens alone is a group of one. A group near a side, not on it (`slides`), has a
+/// theirs. A lens alone is a group of one. A group of circles near a side (`slides`) has a
 /// footprint grown as if it were magnified about a point between its centre and the side, the
 /// side's point where it touches it (so the footprint does not jump there). Footprints do not
 /// overlap: where the disks of radius reach + margin of two groups would, the room between their
@@ -85,7 +85,7 @@ struct FocusGroup {
   Eigen::Vector2d fixed;
   bool on_side = false;  ///< a region crosses (or touches) an image side
   /// The magnified focus may slide away from the sides, where its ring about the centre has too
-  /// little room (focus_start): a group off every side (docs/design.md, "Sliding").
+  /// little room (focus_start): a group of circles off every side (docs/design.md, "Sliding").
   bool slides = false;
   double reach = 0;  ///< pixels
   /// The footprint (the focus scaled by the ratio about `fixed`) lies in the disk of radius
@@ -121,9 +121,8 @@ bool footprint_clear_of_border(const FocusGroup& group, double width, double hei
 /// is magnified about a point on that side (so the side stays where it is), which shifts the
 /// magnified focus inward; a focus that slides (FocusGroup::slides) has its ring's radial to
 /// tangential scale, with the least slide that makes it at least 0.2 on every ray, at least 0.2
-/// (a distortion of 4; round a region that is not a circle, at samples too: focus_start). With
-/// `reasons`, per lens what bounds the edge on the ray that limits it, and a remedy: "the image's
-/// top side, 12 px from the region (...)", "lens 2 beside it
+/// (a distortion of 4). With `reasons`, per lens what bounds the edge on the ray that limits
+/// it, and a remedy: "the image's top side, 12 px from the region (...)", "lens 2 beside it
 /// (...)" (its footprint stops where a neighbour's begins) or "its footprint (...)" (its ratio).
 /// GeometricLens solves each lens at
 /// the largest zoom up to the one asked at which this holds with the lens's own footprint at
@@ -197,19 +196,18 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// folds (in the continuum), the focus is magnified exactly, and the image border maps onto
 /// itself. For a circle this is the power ring with its rim. Where the ring has too little room
 /// on the rays towards a side (FocusGroup::slides), the magnified focus slides away from it by
-/// the least v that gives every ray's power law a radial to tangential scale of at least 0.2
-/// (and, round a region that is not a circle, the slid power law's Jacobian determinant at
-/// least 0.2 g^2 at samples next to the region and round its sharpest corners, where the slide
-/// shears the ring across its rays): a point moves by w v more, w = (1 - g s / R) / (1 - zoom inner
-/// / R) (1 in the focus, which is then magnified about c - v / (zoom - 1), 0 at the edge), which
-/// scales that scale along each ray by one factor, 1 - v.u / (R - zoom inner) (the rim fades as |v|
-/// nears half of R - zoom inner); the image border, beyond the edge, stays. The groups are applied
-/// one after the other; their footprints do not overlap. Where a triangle of `mesh` still folds
-/// (near a polygon's corner, where the start has a cone that a wide triangle averages badly), the
-/// vertices of folded triangles outside the foci move to the mean of their neighbours, a few
-/// rounds, then half way back to their source places; where a fold is left, the same from the
-/// unrepaired start with a sliver's vertices going back from the first round (slivers of the mesh
-/// where a footprint's edge meets an image side at a glancing angle). Returns #V x 2, pixels.
+/// the least v that gives every ray's power law a radial to tangential scale of at least 0.2: a
+/// point moves by w v more, w = (1 - g s / R) / (1 - zoom inner / R) (1 in the focus, which is
+/// then magnified about c - v / (zoom - 1), 0 at the edge), which scales that scale along each
+/// ray by one factor, 1 - v.u / (R - zoom inner) (the rim fades as |v| nears half of R - zoom
+/// inner); the image border, beyond the edge, stays. The groups are applied one after the other;
+/// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
+/// corner, where the start has a cone that a wide triangle averages badly), the vertices of
+/// folded triangles outside the foci move to the mean of their neighbours, a few rounds, then
+/// half way back to their source places; where a fold is left, the same from the unrepaired
+/// start with a sliver's vertices going back from the first round (slivers of the mesh where a
+/// footprint's edge meets an image side at a glancing angle).
+/// Returns #V x 2, pixels.
 Eigen::MatrixX2d focus_start(const PlanarMesh& mesh, const std::vector<Lens>& lenses,
                              const std::vector<FocusGroup>& groups, double cell, double band,
                              double width, double height, ThreadPool& pool);
