@@ -696,6 +696,10 @@ case("map_source_empty_collection", f"magnify none.geojson {MAP_LENS}",
 case("map_source_pole", f"magnify pole.geojson {MAP_LENS}",
      {"pole.geojson": mk.line_geojson([(0, 0), (10, 90), (-10, -90)])}, code=0,
      outputs=OUT_OK)
+case("map_source_over_max_points", f"magnify line.geojson {MAP_LENS} --max-points 1",
+     {"line.geojson": MAP}, words=("line.geojson", "--max-points"))
+case("map_source_max_points_1e30", f"magnify line.geojson {MAP_LENS} --max-points 1e30",
+     {"line.geojson": MAP}, words=("--max-points", "1e30"))
 case("map_source_one_point", f"magnify one.geojson {MAP_LENS}",
      {"one.geojson": '{"type":"Point","coordinates":[5,5]}'}, code=0, outputs=OUT_OK)
 STYLE = '{"layers":[{"geometry":"line","stroke":"#ff0000","width":%s}]}'
@@ -821,6 +825,12 @@ case("obj_nan_vertex", f"magnify c.obj {SCENE_ARGS}",
 case("obj_1e308_vertex", f"magnify c.obj {SCENE_ARGS}",
      {"c.obj": "v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv -1e308 -1e308 1e308\nf 1 2 3\nf 2 3 4\n"},
      words=("c.obj",))
+case("obj_over_max_vertices", f"magnify c.obj {SCENE_ARGS} --max-vertices 7",
+     {"c.obj": mk.cube_obj()}, words=("c.obj", "8 vertices", "--max-vertices"))
+case("obj_max_vertices_raised", f"magnify c.obj {SCENE_ARGS} --max-vertices 8",
+     {"c.obj": mk.cube_obj()}, code=0, outputs=OUT_OK)
+case("obj_max_vertices_zero", f"magnify c.obj {SCENE_ARGS} --max-vertices 0",
+     {"c.obj": mk.cube_obj()}, words=("--max-vertices", "0"))
 case("obj_one_point_repeated", f"magnify c.obj {SCENE_ARGS}",
      {"c.obj": "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n"}, code=0, outputs=OUT_OK)
 case("obj_binary", f"magnify c.obj {SCENE_ARGS}", {"c.obj": bytes(range(256)) * 64},
