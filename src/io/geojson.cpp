@@ -61,16 +61,15 @@ class Reader {
     return *a;
   }
 
-  // Counts `n` more positions read, refusing more than max_points in all.
-  void count(size_t n, const std::string& where) {
-    points_ += n;
-    if (points_ > max_points_)
+  // Counts one more position read, refusing more than max_points in all.
+  void count_position(const std::string& where) {
+    if (++points_ > max_points_)
       fail(where, "more than the " + std::to_string(max_points_) +
                       " positions read in all (max_points; --max-points raises it)");
   }
 
   Eigen::RowVector2d position(const Json& j, const std::string& where) {
-    count(1, where);
+    count_position(where);
     if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
       fail(where, "expected a position [x, y] of two numbers, got " + excerpt(j) +
                       (j.is_array() && j.size() > 2 ? " (altitude is not supported)" : ""));
@@ -284,7 +283,7 @@ VectorData parse_geojson(const std::string& text, const std::string& name, size_
   require(text.size() <= geojson_bytes_limit(max_points), "parse_geojson",
           "'" + name + "' is larger than the " +
               std::to_string(geojson_bytes_limit(max_points) >> 20) +
-              " MiB a GeoJSON text may hold (16 bytes a point of max_points, at least 64 MiB)");
+              " MiB a GeoJSON text may hold (16 bytes a position of max_points, at least 64 MiB)");
   return Reader(name, max_points).document(text);
 }
 

@@ -275,7 +275,7 @@ TEST_F(GeoJsonFile, ALargerFileThanTheBoundIsRefusedUnread) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()),
               "parse_geojson: 'standard input' is larger than the 64 MiB a GeoJSON text may hold "
-              "(16 bytes a point of max_points, at least 64 MiB)");
+              "(16 bytes a position of max_points, at least 64 MiB)");
   }
   // A limit of more points reads a larger file: the 65 MiB of zeros are read, and are not JSON.
   EXPECT_EQ(geojson_bytes_limit(kMaxGeoJsonPoints), kMaxGeoJsonBytes);
