@@ -8,6 +8,7 @@
 #include <memory>
 #include <system_error>
 
+#include "core/limits.h"
 #include "geolens/core/errors.h"
 #include "geolens/io/file_io.h"
 #include "geolens/io/image.h"
@@ -85,8 +86,8 @@ Image load_mask(const std::string& path, uint64_t max_pixels) {
 namespace codecs {
 
 std::string limit_message(uint64_t width, uint64_t height, uint64_t max_pixels) {
-  return std::to_string(width) + " x " + std::to_string(height) + " pixels is more than the " +
-         std::to_string(max_pixels) + " read (max_pixels; --max-pixels raises it)";
+  return std::to_string(width) + " x " + std::to_string(height) + " pixels is " +
+         over_limit(max_pixels, "max_pixels");
 }
 
 }  // namespace codecs

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/limits.h"
 #include "geolens/core/errors.h"
 
 namespace geolens {
@@ -21,8 +22,7 @@ void check_volume(const ScalarVolume& volume, const char* function, const std::s
 }
 
 std::string voxel_limit_message(uint64_t voxels, size_t max_voxels) {
-  return std::to_string(voxels) + " voxels, more than the " + std::to_string(max_voxels) +
-         " read (max_voxels; --max-voxels raises it)";
+  return std::to_string(voxels) + " voxels, " + over_limit(max_voxels, "max_voxels");
 }
 
 }  // namespace geolens

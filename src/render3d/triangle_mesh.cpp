@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/limits.h"
 #include "geolens/core/errors.h"
 
 namespace geolens {
@@ -75,8 +76,7 @@ void bounding_sphere(const TriangleMesh& mesh, Eigen::Vector3d& centre, double& 
 }
 
 std::string vertex_limit_message(uint64_t vertices, size_t max_vertices) {
-  return std::to_string(vertices) + " vertices, more than the " + std::to_string(max_vertices) +
-         " read (max_vertices; --max-vertices raises it)";
+  return std::to_string(vertices) + " vertices, " + over_limit(max_vertices, "max_vertices");
 }
 
 }  // namespace geolens
