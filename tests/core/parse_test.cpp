@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geolens/core/errors.h"
+#include "support/refusal.h"
 
 namespace geolens {
 namespace {
@@ -59,14 +60,8 @@ TEST(Parse, ACountIsAWholeNumberWithinTheRange) {
       {"1025", "--max-points: must be a whole number in [1, 1024], got '1025'"},
       {"nan", "--max-points: must be a number, got 'nan'"},
       {"lots", "--max-points: must be a number, got 'lots'"}};
-  for (const auto& [text, message] : refused) {
-    try {
-      parse_count(text, "--max-points", 1, 1024);
-      ADD_FAILURE() << text;
-    } catch (const InvalidInput& e) {
-      EXPECT_STREQ(e.what(), message);
-    }
-  }
+  for (const auto& [text, message] : refused)
+    EXPECT_EQ(test::refusal([&] { parse_count(text, "--max-points", 1, 1024); }), message) << text;
 }
 
 TEST(Parse, ASizeIsTwoIntegersWithinTheRange) {
@@ -79,14 +74,8 @@ TEST(Parse, ASizeIsTwoIntegersWithinTheRange) {
       {"0x5", "--size: sides must be in [1, 16384], got '0x5'"},
       {"5x16385", "--size: sides must be in [1, 16384], got '5x16385'"},
       {"-5x5", "--size: sides must be in [1, 16384], got '-5x5'"}};
-  for (const auto& [text, message] : refused) {
-    try {
-      parse_size(text, "--size", 1, 16384);
-      FAIL() << text;
-    } catch (const InvalidInput& e) {
-      EXPECT_STREQ(e.what(), message);
-    }
-  }
+  for (const auto& [text, message] : refused)
+    EXPECT_EQ(test::refusal([&] { parse_size(text, "--size", 1, 16384); }), message) << text;
 }
 
 }  // namespace
