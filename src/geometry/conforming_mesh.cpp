@@ -15,6 +15,7 @@
 #include "geolens/core/errors.h"
 #include "geometry/polygon.h"
 #include "numerics/bracketed_root.h"
+#include "numerics/svd2.h"
 
 namespace geolens {
 
@@ -460,6 +461,53 @@ void split_longest(Work& w, const std::vector<MeshCurve>& curves, int f) {
   }
 }
 
+// Adds to `bent` the triangles of `dirty` with a corner on a `slope` curve whose slope is off by
+// more than refine.slope_tolerance of their smaller singular value (`image`: the map at every
+// vertex). For a map quadratic across a triangle, the gradient of its linear interpolant at the
+// centroid is off by 4/3 sum_k d_k grad(l_k), d_k the map's deviation at the midpoint of the
+// edge opposite corner k and |grad l_k| = 1 / h_k, its height there: a triangle with an obtuse
+// corner has a small height, so a bend its positions hardly show is a large error of its shape.
+// Following a curve makes such triangles; away from the curves the grid's are right-angled, and
+// a kink of the map along a line no curve follows would be split all along it to no end.
+void add_sloped_off(const Work& w, const std::vector<MeshCurve>& curves,
+                    const MeshRefinement& refine, const Eigen::MatrixX2d& image,
+                    const std::vector<int>& dirty, std::vector<int>& bent) {
+  std::vector<int> near;
+  for (int f : dirty) {
+    const Triangle& t = w.F[size_t(f)];
+    if (w.area2(t) > 0 && std::any_of(t.begin(), t.end(), [&](int v) {
+          const int curve = w.curve_of[size_t(v)];
+          return curve >= 0 && curves[size_t(curve)].slope;
+        }))
+      near.push_back(f);
+  }
+  Eigen::MatrixX2d midpoints(3 * Eigen::Index(near.size()), 2);  // opposite each corner
+  for (size_t i = 0; i < near.size(); ++i) {
+    const Triangle& t = w.F[size_t(near[i])];
+    for (size_t k = 0; k < 3; ++k)
+      midpoints.row(3 * Eigen::Index(i) + Eigen::Index(k)) =
+          0.5 * (w.V[size_t(t[(k + 1) % 3])] + w.V[size_t(t[(k + 2) % 3])]).transpose();
+  }
+  const Eigen::MatrixX2d mapped = refine.map(midpoints);
+  for (size_t i = 0; i < near.size(); ++i) {
+    const Triangle& t = w.F[size_t(near[i])];
+    double error = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      const int a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      const Eigen::RowVector2d deviation =
+          mapped.row(3 * Eigen::Index(i) + Eigen::Index(k)) - 0.5 * (image.row(a) + image.row(b));
+      error += deviation.norm() * (w.V[size_t(b)] - w.V[size_t(a)]).norm();
+    }
+    error *= 4.0 / 3 / w.area2(t);
+    Eigen::Matrix2d source, target;
+    source << w.V[size_t(t[1])] - w.V[size_t(t[0])], w.V[size_t(t[2])] - w.V[size_t(t[0])];
+    target.col(0) = (image.row(t[1]) - image.row(t[0])).transpose();
+    target.col(1) = (image.row(t[2]) - image.row(t[0])).transpose();
+    const double smaller = std::abs(signed_singular_values(target * source.inverse())(1));
+    if (error > refine.slope_tolerance * smaller) bent.push_back(near[i]);
+  }
+}
+
 // Splits triangles where `refine.map` bends between the ends of an edge (see conform_mesh). A
 // pass looks at the edges of the triangles the previous one made (the first at all).
 void refine_where_bent(Work& w, const std::vector<MeshCurve>& curves,
@@ -502,6 +550,7 @@ void refine_where_bent(Work& w, const std::vector<MeshCurve>& curves,
         if (std::find(t.begin(), t.end(), b) != t.end()) bent.push_back(f);
       }
     }
+    if (refine.slope_tolerance > 0) add_sloped_off(w, curves, refine, image, dirty, bent);
     // and where it bends inside a triangle (its edges may be straight where a curve of the map,
     // such as a footprint's edge rounded at an image corner, passes by).
     Eigen::MatrixX2d centroids(Eigen::Index(dirty.size()), 2);
@@ -546,7 +595,10 @@ void merge_coincident(Work& w) {
     while (into[size_t(v)] != v) v = into[size_t(v)];
     return v;
   };
-  // Whether merging root b into root a keeps every triangle at b that is left counter-clockwise.
+  // Whether merging root b into root a keeps every triangle at b that is left counter-clockwise
+  // and not flat (its height over its longest edge above 1e-9: a merge near a side once left
+  // three vertices 1e-5 px from it, none on it, as a triangle 1.3 px long of 1e-14 px^2, which
+  // the warp's measure read as flipped).
   auto keeps_orientation = [&](int a, int b) {
     for (int m : members[size_t(b)])
       for (int f : w.around[size_t(m)]) {
@@ -555,7 +607,11 @@ void merge_coincident(Work& w) {
           const int r = root(w.F[size_t(f)][k]);
           u[k] = r == b ? a : r;
         }
-        if (u[0] != u[1] && u[1] != u[2] && u[2] != u[0] && !(w.area2(u) > 0)) return false;
+        if (u[0] == u[1] || u[1] == u[2] || u[2] == u[0]) continue;  // dropped
+        double longest = 0;
+        for (size_t k = 0; k < 3; ++k)
+          longest = std::max(longest, (w.V[size_t(u[(k + 1) % 3])] - w.V[size_t(u[k])]).norm());
+        if (!(w.area2(u) > 1e-9 * longest * longest)) return false;
       }
     return true;
   };
@@ -652,8 +708,10 @@ PlanarMesh conform_mesh(const PlanarMesh& mesh, const std::vector<MeshCurve>& cu
   require(std::isfinite(snap) && snap >= 0, "conform_mesh",
           "snap distance must be finite and >= 0, got " + std::to_string(snap));
   require(!refine.map ||
-              (std::isfinite(refine.tolerance) && refine.tolerance > 0 && refine.max_passes >= 0),
-          "conform_mesh", "refinement needs a tolerance > 0 and max_passes >= 0");
+              (std::isfinite(refine.tolerance) && refine.tolerance > 0 && refine.max_passes >= 0 &&
+               std::isfinite(refine.slope_tolerance) && refine.slope_tolerance >= 0),
+          "conform_mesh",
+          "refinement needs a tolerance > 0, a slope tolerance >= 0 and max_passes >= 0");
   for (const MeshCurve& curve : curves)
     require(curve.level && curve.project, "conform_mesh",
             "every curve needs a level and a projection");

@@ -22,6 +22,9 @@ struct MeshCurve {
   /// A point of the curve near p (p within a few cells of it), pixels.
   std::function<Eigen::Vector2d(const Eigen::Vector2d&)> project;
   Eigen::AlignedBox2d bounds;  ///< holds the curve and its negative side, pixels
+  /// Whether triangles with a corner on it are refined by their slope too
+  /// (MeshRefinement::slope_tolerance): where the map bends most next to it.
+  bool slope = false;
 };
 
 /// The circle of `center` and `radius` (pixels, > 0): level = distance to the centre - radius.
@@ -38,6 +41,10 @@ struct MeshRefinement {
   std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> map;
   double tolerance = 0.1;  ///< pixels of the map's output, > 0
   int max_passes = 8;      ///< >= 0
+  /// Also split a triangle with a corner on a curve marked `slope` whose linear interpolant's
+  /// slope is off by more than this fraction of its smaller singular value (the error of its
+  /// shape), estimated from the map at its edges' midpoints; 0: only positions are looked at.
+  double slope_tolerance = 0;
 };
 
 /// `mesh` made to follow every curve, in turn, so that afterwards no triangle has points on both
@@ -56,11 +63,13 @@ struct MeshRefinement {
 ///
 /// Then, with `refine.map`, up to max_passes times: every triangle with an edge whose midpoint
 /// the map sends farther than `tolerance` from the mean of its ends' images, or whose centroid
-/// it sends that far from the mean of its corners', is split at the midpoint of its longest edge
-/// (with the triangle across it, longest-edge propagation); a midpoint of an edge along a curve
-/// is put on the curve (project). Last, slivers (an angle below 10 degrees) are made fatter by
-/// flipping edges (Delaunay's test, the smallest angle growing), except edges along a curve or
-/// with a corner on a side, and flips that would leave more than 30 degrees at a polygon vertex.
+/// it sends that far from the mean of its corners', or (with a corner on a `slope` curve) whose
+/// slope is off by more than `slope_tolerance` of its smaller singular value, is split at the
+/// midpoint of its longest edge (with the triangle across it, longest-edge propagation); a midpoint
+/// of an edge along a curve is put on the curve (project). Last, slivers (an angle below 10
+/// degrees) are made fatter by flipping edges (Delaunay's test, the smallest angle growing), except
+/// edges along a curve or with a corner on a side, and flips that would leave more than 30 degrees
+/// at a polygon vertex.
 ///
 /// New vertices on an edge are shared by both its triangles. Vertices on a side of the mesh
 /// (sides != 0) and vertices placed on an earlier curve do not move; a vertex added on an edge

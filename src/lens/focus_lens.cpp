@@ -202,23 +202,24 @@ double radial_ratio(double lambda, double log_zoom, double along, double edge) {
 }
 
 // The rim's share of the distortion: the ring's profile may have up to 1 + kRimBudget times the
-// power law's 1 / k (a distortion within 1.3 times the radial bound) to end without a crease.
-constexpr double kRimBudget = 0.3;
+// power law's 1 / k (a distortion within 1.15 times the radial bound) to end without a crease.
+constexpr double kRimBudget = 0.15;
 
 // The ring's profile along a ray whose power law has L / lambda = a (k = 1 - a): ln g = L P(x)
 // at x = ln(edge / s) / lambda, in [0, 1] from the footprint's edge to the focus, P(0) = 0,
 // P(1) = 1. The power law is P = x, whose slope 1 to the end is the rim's crease (a radial scale
-// of k inside the edge, 1 beyond). This P's slope rises from 0 at the edge as the smoothstep
-// m (3 y^2 - 2 y^3), y = x / delta, over the rim 0 <= x <= delta and is m beyond, with m = (1 +
-// b) / (1 + b a) and delta = 2 b (1 - a) / (1 + b), so that P(1) = 1: the ring's radial to
-// tangential scale 1 - a P' is 1 at the edge with slope 0 (the warp is C1, and its radial scale
-// C1, there) and at least 1 - m a = (1 - a) / (1 + b a) within, a distortion of (1 + b a) / k - 1,
-// within 1 + b times the power law's 1 / k - 1 (rim_distortion_bound). b is kRimBudget up to a =
-// 0.55 (a rim of 0.2 to 0.46 of x) and falls to 0 at a = 0.85, where the rim is the power law's:
-// near the fit's limit (a = 0.8, k = 0.2) the ring's compression next to a polygon's or a
-// mask's tip then stays the power law's (a rim there folded a mask's tip on a fine mesh), and a
-// ray a focus slides along may have a >= 1 (the slide gives it the room, Ring::moved), where a
-// rim of slope 0 would fold.
+// of k inside the edge, 1 beyond). This P's slope rises linearly from 0 at the edge, m y with
+// y = x / delta, over the rim 0 <= x <= delta and is m beyond, with m = (1 + b) / (1 + b a) and
+// delta = 2 b (1 - a) / (1 + b), so that P(1) = 1: the ring's radial to tangential scale 1 - a P'
+// is 1 at the edge (the warp is C1 there) and at least 1 - m a = (1 - a) / (1 + b a) within, a
+// distortion of (1 + b a) / k - 1, within 1 + b times the power law's 1 / k - 1
+// (rim_distortion_bound). A linear rise changes the radial scale by 2/3 of what a smoothstep's
+// of the same width does at its steepest (the rim was a smoothstep with b = 0.3: 0.013-0.015 a
+// pixel, 1.3 times the radial bound; now 0.010-0.016 a pixel, 1.15 times). b is kRimBudget up to
+// a = 0.7 and falls to 0 at a = 0.85, where the rim is the power law's: near the fit's limit (a =
+// 0.8, k = 0.2) the ring's compression next to a polygon's or a mask's tip then stays the power
+// law's (a rim there folded a mask's tip on a fine mesh), and a ray a focus slides along may have
+// a >= 1 (the slide gives it the room, Ring::moved), where a rim of slope 0 would fold.
 struct Rim {
   // 0 up to z = 0, 1 from z = 1, the smoothstep 3 z^2 - 2 z^3 between: C1, so the rim's budget
   // fades with the slide without a kink. The shear changes quickly from ray to ray where a ray
@@ -235,7 +236,7 @@ struct Rim {
   double a, b, m, delta;
   // `shear`: a sliding focus's slide over the ray's room, |v| / (edge - zoom inner) (0 if none).
   explicit Rim(double a_, double shear = 0) : a(a_) {
-    b = kRimBudget * std::clamp((0.85 - a) / 0.3, 0.0, 1.0) * fade(1 - 2 * shear);
+    b = std::clamp(0.85 - a, 0.0, kRimBudget) * fade(1 - 2 * shear);
     m = (1 + b) / (1 + b * a);
     delta = 2 * b * (1 - a) / (1 + b);
   }
@@ -243,12 +244,12 @@ struct Rim {
   double profile(double x) const {
     if (x >= delta) return m * (x - 0.5 * delta);
     const double y = x / delta;
-    return m * delta * y * y * y * (1 - 0.5 * y);
+    return 0.5 * m * delta * y * y;
   }
   // The radial to tangential scale 1 - a P'(x) over the power law's 1 - a (1 where b = 0).
   double relative_radial(double x) const {
     if (b == 0) return 1;
-    return (1 - a * m * fade(x / delta)) / (1 - a);
+    return (1 - a * m * std::min(x / delta, 1.0)) / (1 - a);
   }
   // (x - a P(x)) / (1 - a), 0 at the edge and 1 in the focus: the ring moves a point to g s =
   // edge e^(-(lambda - L) Q(x)) along its ray (for a circle), and a slide's weight (Ring::moved)
@@ -256,7 +257,7 @@ struct Rim {
   double spread(double x) const {
     if (x >= delta) return (x + b * a) / (1 + b * a);
     const double y = x / delta;
-    return 2 * b * (y / (1 + b) - a * y * y * y * (1 - 0.5 * y) / (1 + b * a));
+    return 2 * b * (y / (1 + b) - 0.5 * a * y * y / (1 + b * a));
   }
 };
 
@@ -1232,10 +1233,12 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
                                     double width, double height) {
   std::vector<MeshCurve> curves;
   for (const Lens& lens : lenses) {
-    if (const std::optional<Circle> c = lens.region.circle())
+    if (const std::optional<Circle> c = lens.region.circle()) {
       curves.push_back(circle_curve(c->center, c->radius));
-    else if (const std::optional<std::vector<Eigen::Vector2d>> p = lens.region.outline())
+      curves.back().slope = true;  // the ring bends most next to the focus
+    } else if (const std::optional<std::vector<Eigen::Vector2d>> p = lens.region.outline()) {
       curves.push_back(polygon_curve(*p));
+    }
   }
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     if (group.log_zoom <= 0) continue;  // nothing moves

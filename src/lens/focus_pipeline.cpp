@@ -17,6 +17,17 @@ namespace {
 // The refinement's tolerance relative to a region's reach (base_mesh).
 constexpr double kRelativeTolerance = 1.0 / 400;
 
+// The refinement's slope tolerance (MeshRefinement::slope_tolerance) next to a circle's focus
+// (focus_curves), where its ring bends most: a triangle the mesh made to follow the circle may
+// have an obtuse corner, whose linear map is far more distorted than the ring (a circle r 30 at
+// zoom 2, footprint ratio 8: 0.753 against the ring's 0.650). At 0.075 the focus lens of
+// docs/reproduction.md's sweep is within 1.11 times its ring's bound (1.05-1.19 without), 1-10 %
+// more triangles; at 0.05 within 1.08 but up to 5 times the triangles where the footprint is tight
+// (zoom 3, ratio 4). Not next to a polygon: its ring has kinks no split resolves (along the
+// ridges of the distance to it), and splits at its corners made degenerate triangles (the model
+// sweep's setups).
+constexpr double kSlopeTolerance = 0.075;
+
 // How far, in cells, lenses whose footprint the image border cuts may move before their mesh is
 // made anew (moved_mesh): the deformed mesh's picture drifts from a fresh mesh's as the border
 // bends the ring anew (test DraggedAlongTheBorder: within 0.25 px of a 4x finer solve at 1.5
@@ -137,6 +148,7 @@ BaseMesh FocusPipeline::base_mesh(const std::vector<Lens>& lenses, Eigen::Aligne
     // lens needs a finer tolerance for the same shape (a 20 px circle at zoom 3, footprint
     // ratio 12: shape max 0.995 at 0.2 px, 0.850 at 0.05 px, the radial bound 0.792).
     refine.tolerance = c_.options.mesh_tolerance;
+    refine.slope_tolerance = kSlopeTolerance;
     for (const Lens& lens : lenses)
       refine.tolerance = std::min(refine.tolerance, kRelativeTolerance * lens.region.reach());
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geolens/core/errors.h"
+#include "numerics/svd2.h"
 
 namespace geolens {
 namespace {
@@ -154,12 +155,78 @@ TEST(ConformingMesh, RefinesWhereAMapBendsAndNowhereElse) {
   EXPECT_EQ(beyond, 0);
 }
 
+// Next to a curve, where following it leaves triangles with an obtuse corner, a triangle's
+// linear map can be far off the slope of the map it samples (its shape distortion is then the
+// mesh's, not the map's). With a slope tolerance, every triangle with a corner on a curve is
+// split until its slope is within that fraction of its smaller singular value: measured here
+// against the exact gradient of a quadratic map at the triangle's centroid (the estimate from
+// the midpoints is an upper bound of that error for a quadratic).
+TEST(ConformingMesh, SplitsTrianglesWhoseSlopeIsOffNextToACurve) {
+  const Eigen::Vector2d c(150, 150);
+  // p + ((p - c).x^2, (p - c).x (p - c).y) / 200: a bend that grows away from c.
+  auto map = [c](const Eigen::MatrixX2d& P) {
+    Eigen::MatrixX2d X = P;
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      const Eigen::Vector2d d = Eigen::Vector2d(P.row(i)) - c;
+      X.row(i) += Eigen::RowVector2d(d.x() * d.x(), d.x() * d.y()) / 200;
+    }
+    return X;
+  };
+  auto gradient = [c](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d d = p - c;
+    Eigen::Matrix2d J;
+    J << 1 + d.x() / 100, 0, d.y() / 200, 1 + d.x() / 200;
+    return J;
+  };
+  const Grid grid = make_grid(300, 300, 31);
+  std::vector<MeshCurve> curves = {circle_curve(c, 57.3)};
+  curves[0].slope = true;
+  const double tolerance = 0.05;
+  // The triangles with a corner on the curve whose slope is off by more than the tolerance.
+  auto off = [&](double slope_tolerance, Eigen::Index* triangles) {
+    MeshRefinement refine;
+    refine.map = map;
+    refine.tolerance = 1;  // positions alone split little
+    refine.slope_tolerance = slope_tolerance;
+    std::vector<int> on_curve;
+    const PlanarMesh m = conform_mesh(grid, curves, 0.4 * grid.cell, refine, &on_curve);
+    expect_valid_cover(m, 300, 300);
+    expect_followed(m, curves[0], 57.3);
+    *triangles = m.F.rows();
+    const Eigen::MatrixX2d X = map(m.V);
+    int count = 0;
+    for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+      Eigen::Matrix2d source, mapped;
+      for (int j = 0; j < 2; ++j) {
+        source.col(j) = (m.V.row(m.F(f, j + 1)) - m.V.row(m.F(f, 0))).transpose();
+        mapped.col(j) = (X.row(m.F(f, j + 1)) - X.row(m.F(f, 0))).transpose();
+      }
+      const Eigen::Matrix2d J = mapped * source.inverse();
+      const Eigen::Vector2d centroid =
+          (m.V.row(m.F(f, 0)) + m.V.row(m.F(f, 1)) + m.V.row(m.F(f, 2))).transpose() / 3;
+      const bool touches = on_curve[size_t(m.F(f, 0))] >= 0 || on_curve[size_t(m.F(f, 1))] >= 0 ||
+                           on_curve[size_t(m.F(f, 2))] >= 0;
+      const double error = signed_singular_values(J - gradient(centroid))(0);
+      count += touches && error > tolerance * signed_singular_values(J)(1);
+    }
+    return count;
+  };
+  Eigen::Index plain = 0, split = 0;
+  EXPECT_GT(off(0, &plain), 10);
+  EXPECT_EQ(off(tolerance, &split), 0);
+  EXPECT_GT(split, plain);
+  EXPECT_LT(split, 2 * plain);  // only next to the curve
+}
+
 TEST(ConformingMesh, RefusesBadArguments) {
   const Grid grid = make_grid(100, 100, 11);
   EXPECT_THROW(conform_mesh(grid, {}, -1), InvalidInput);
   MeshRefinement refine;
   refine.map = [](const Eigen::MatrixX2d& P) { return P; };
   refine.tolerance = 0;
+  EXPECT_THROW(conform_mesh(grid, {}, 1, refine), InvalidInput);
+  refine.tolerance = 0.1;
+  refine.slope_tolerance = -1;
   EXPECT_THROW(conform_mesh(grid, {}, 1, refine), InvalidInput);
   EXPECT_THROW(circle_curve({0, 0}, 0), InvalidInput);
   EXPECT_THROW(polygon_curve({{0, 0}, {1, 0}}), InvalidInput);

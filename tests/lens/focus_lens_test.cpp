@@ -71,16 +71,19 @@ TEST(FocusLens, RadialBoundIsThePowerLawsDistortion) {
   EXPECT_EQ(radial_distortion_bound(1, 2), 0.0);
   EXPECT_TRUE(std::isinf(radial_distortion_bound(4, 4)));
   EXPECT_THROW(radial_distortion_bound(2, 1), InvalidInput);
-  // The rim's: 1.3 times the power law's where the ring has room (a <= 0.55), the power law's
+  // The rim's: 1.15 times the power law's where the ring has room (a <= 0.7), the power law's
   // where it has least (a >= 0.85), and between the two in between.
-  EXPECT_NEAR(rim_distortion_bound(2, 4), 1.3 * radial_distortion_bound(2, 4), 1e-12);
-  EXPECT_NEAR(rim_distortion_bound(2, 8), 1.3 * radial_distortion_bound(2, 8), 1e-12);
+  EXPECT_NEAR(rim_distortion_bound(2, 4), 1.15 * radial_distortion_bound(2, 4), 1e-12);
+  EXPECT_NEAR(rim_distortion_bound(2, 8), 1.15 * radial_distortion_bound(2, 8), 1e-12);
+  EXPECT_NEAR(rim_distortion_bound(std::pow(10, 0.8), 10),
+              1.05 * radial_distortion_bound(std::pow(10, 0.8), 10), 1e-12);
   EXPECT_NEAR(rim_distortion_bound(std::pow(10, 0.9), 10),
               radial_distortion_bound(std::pow(10, 0.9), 10), 1e-12);
   for (double a = 0.05; a < 1; a += 0.05) {
     const double zoom = std::pow(10, a);
     EXPECT_GE(rim_distortion_bound(zoom, 10), radial_distortion_bound(zoom, 10)) << a;
-    EXPECT_LE(rim_distortion_bound(zoom, 10), 1.3 * radial_distortion_bound(zoom, 10) + 1e-12) << a;
+    EXPECT_LE(rim_distortion_bound(zoom, 10), 1.15 * radial_distortion_bound(zoom, 10) + 1e-12)
+        << a;
   }
   EXPECT_TRUE(std::isinf(rim_distortion_bound(4, 4)));
 }
@@ -402,8 +405,9 @@ struct RayScale {
 
 // The rim without a crease: along a ray from a circle's centre the radial scale reaches 1 at the
 // footprint's edge continuously, changing by at most 0.02 a pixel across it at zooms 2 to 8
-// (RayScale; 0.013 to 0.015 here); the power ring's scale jumped from about k (0.39 at zoom 3, 0.25
-// at 8) to 1 within a pixel there. Its focus is still magnified exactly.
+// (RayScale; 0.010 to 0.016 here), 0.95 or more over the last 6 px; the power ring's scale jumped
+// from about k (0.39 at zoom 3, 0.25 at 8) to 1 within a pixel there. Its focus is still
+// magnified exactly.
 TEST(FocusLens, ItsRimEndsWithoutACrease) {
   LensOptions options;
   options.mesh = 400;
@@ -417,7 +421,7 @@ TEST(FocusLens, ItsRimEndsWithoutACrease) {
     for (const Eigen::Vector2d u : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0.6, -0.8)}) {
       const RayScale scale{map, {1024, 675}, u};
       EXPECT_LE(scale.largest_change(0.5 * edge, edge + 20), 0.02);
-      EXPECT_GT(scale(edge - scale.step - 1), 0.97);
+      EXPECT_GT(scale(edge - scale.step - 1), 0.94);
       EXPECT_NEAR(scale(edge + 1), 1, 1e-6);
     }
     const TriangleDistortion measures = measure_triangles(r.warp);
@@ -754,8 +758,16 @@ TEST(FocusLens, ThousandRandomSetups) {
     }
     const LensResult r = GeometricLens(512, 512, options).solve(lenses);
     const TriangleDistortion measures = measure_triangles(r.warp);
-    flipped += summarize(measures).flipped;
     const std::vector<FocusMeasure> f = measure_foci(r.warp, measures, lenses);
+    std::string described;  // the setup as geolens's --lens options
+    for (const Lens& l : lenses)
+      described += " --lens circle:" + std::to_string(l.region.peak().x()) + "," +
+                   std::to_string(l.region.peak().y()) + "," + std::to_string(l.region.size()) +
+                   ":" + std::to_string(l.zoom);
+    if (const int folds = summarize(measures).flipped; folds > 0) {
+      flipped += folds;
+      ADD_FAILURE() << "setup " << setup << ": " << folds << " flipped," << described;
+    }
     std::vector<double> log_zooms;
     for (const Lens& lens : lenses) log_zooms.push_back(std::log(lens.zoom));
     for (const FocusGroup& g : focus_groups(lenses, log_zooms, 512, 512)) {
@@ -773,13 +785,8 @@ TEST(FocusLens, ThousandRandomSetups) {
         alone += zoom == lenses[k].zoom;
         if (std::abs(f[k].zoom / zoom - 1) > 0.05) {
           ++missed;
-          std::string d;
-          for (const Lens& l : lenses)
-            d += " --lens circle:" + std::to_string(l.region.peak().x()) + "," +
-                 std::to_string(l.region.peak().y()) + "," + std::to_string(l.region.size()) + ":" +
-                 std::to_string(l.zoom);
           ADD_FAILURE() << "setup " << setup << " lens " << k << " zoom " << zoom << " measured "
-                        << f[k].zoom << d;
+                        << f[k].zoom << described;
         }
       }
     }
@@ -867,8 +874,9 @@ INSTANTIATE_TEST_SUITE_P(
 namespace geolens {
 namespace {
 
-// The trade-off: at every footprint the focus lens stays within 25 % of its ring's bound (the
-// rim's, at most 1.3 times the radial bound: rim_distortion_bound), below
+// The trade-off: at every footprint the focus lens stays within 1.3 times the radial bound (1.20
+// and 1.23 here; 1.24 and 1.32 before the mesh was refined by its slope next to the focus) and
+// 12 % of its ring's (the rim's, at most 1.15 times the radial bound: rim_distortion_bound), below
 // every classic lens with a uniform focus but the bound-reaching power ring (within 5 % of the
 // bound on a 400 grid for the classic lenses; 7 % on the 200 grid), and its focus is uniform.
 TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
@@ -891,7 +899,8 @@ TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
     EXPECT_LE(geometric.uniformity, 1.01);
     EXPECT_NEAR(sweep.bound[i], radial_distortion_bound(geometric.zoom, sweep.ratios[i]), 1e-12);
     EXPECT_NEAR(sweep.rim_bound[i], rim_distortion_bound(geometric.zoom, sweep.ratios[i]), 1e-12);
-    EXPECT_LE(geometric.shape_max, 1.25 * sweep.rim_bound[i]);
+    EXPECT_LE(geometric.shape_max, 1.3 * sweep.bound[i]);
+    EXPECT_LE(geometric.shape_max, 1.12 * sweep.rim_bound[i]);
     EXPECT_NEAR(at("power_ring").shape_max / sweep.bound[i], 1.0, 0.05);
     for (const char* flat : {"bifocal", "flattop_linear", "flattop_cosine"}) {
       EXPECT_LE(at(flat).uniformity, 1.01) << flat;
@@ -906,8 +915,9 @@ TEST(FootprintSweep, FocusLensAgainstTheBoundAndTheClassicLenses) {
 
 // At zoom 3 over the sweep's footprints, the extremes of docs/reproduction's table, on a focus of
 // 20 px: the mesh is refined relative to the region's size too (at a 0.2 px tolerance alone the
-// largest footprint measured 1.26 times the bound).
-TEST(FootprintSweep, FocusLensWithinAQuarterOfTheBoundAtZoomThree) {
+// largest footprint measured 1.26 times the bound), and by its slope next to the focus (without:
+// 1.19 times the ring's bound at ratio 4; 1.09 with).
+TEST(FootprintSweep, FocusLensNearTheBoundAtZoomThree) {
   LensOptions options;
   options.mesh = 200;
   const Lens lens{Region::circle({256, 256}, 20), 3.0};
@@ -920,7 +930,8 @@ TEST(FootprintSweep, FocusLensWithinAQuarterOfTheBoundAtZoomThree) {
       ++found;
       EXPECT_NEAR(p.zoom, 3.0, 0.03);
       EXPECT_LE(p.uniformity, 1.01);
-      EXPECT_LE(p.shape_max, 1.25 * sweep.rim_bound[i]);
+      EXPECT_LE(p.shape_max, 1.3 * sweep.bound[i]);
+      EXPECT_LE(p.shape_max, 1.12 * sweep.rim_bound[i]);
       EXPECT_GE(p.shape_max, sweep.bound[i] * (1 - 1e-9));  // no radial lens does better
     }
   }
