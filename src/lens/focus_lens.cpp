@@ -277,6 +277,9 @@ struct Ring {
   // The magnified focus's slide per unit of zoom - 1, pixels: the focus is magnified about
   // centre - pull (0 unless it slides).
   Eigen::Vector2d pull = Eigen::Vector2d::Zero();
+  // The direction of the image side the ring's centre is on, along which alone it slides (0 if
+  // it is on none).
+  Eigen::Vector2d along = Eigen::Vector2d::Zero();
   double disk_radius, ratio, near, cell, width, height, margin = 0;
   std::vector<double> inner_;          // per bin, or one value for a circle about its centre
   std::vector<RingDistance> regions_;  // the group's
@@ -295,6 +298,9 @@ struct Ring {
     // (A mesh that follows the regions resolves them: its band is a millionth of a cell.)
     for (size_t k : group.lenses)
       if (lenses[k].region.size() < 3 * cell && near > 0.5 * cell) margin = 2 * cell;
+    if (group.on_side)
+      along = centre.x() == 0 || centre.x() == width ? Eigen::Vector2d::UnitY()
+                                                     : Eigen::Vector2d::UnitX();
     if (group.slides && group.log_zoom > 0)
       pull = least_slide(group.log_zoom) / std::expm1(group.log_zoom);
   }
@@ -341,7 +347,9 @@ struct Ring {
       const double most =
           r.edge * (-std::expm1(-x) - kLeastRadial * lambda * one_minus_exp_over(x)) -
           1e-6 * r.inner;
-      cuts.emplace_back(u, most);
+      // About a point of an image side, along the side only (its points stay on it).
+      cuts.emplace_back(
+          along == Eigen::Vector2d::Zero() ? u : Eigen::Vector2d(u.dot(along) * along), most);
       needed = needed || most < 0;
     }
     Eigen::Vector2d v = Eigen::Vector2d::Zero();
@@ -676,19 +684,20 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
   if (bounds.max().x() >= width) g.fixed.x() = width;
   if (bounds.min().y() <= 0) g.fixed.y() = 0;
   if (bounds.max().y() >= height) g.fixed.y() = height;
-  g.on_side = !(bounds.min().x() > 0 && bounds.min().y() > 0 && bounds.max().x() < width &&
-                bounds.max().y() < height);
-  g.slides = !g.on_side && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
-    return lenses[k].region.circle().has_value();
-  });
+  const int sides = (bounds.min().x() <= 0) + (bounds.max().x() >= width) +
+                    (bounds.min().y() <= 0) + (bounds.max().y() >= height);
+  g.on_side = sides > 0;
+  g.slides = sides <= 1 && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
+               return lenses[k].region.circle().has_value();
+             });
   // The footprint, the focus scaled by the ratio about that point, lies within the disk of
   // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
   // side slides away from it (Ring::least_slide), magnified about a point between the centre
   // and that side; its footprint grows the same way, with the point estimated_fixed_offset puts
   // there (the side's point where the region touches it, so the footprint does not jump).
   const Eigen::Vector2d offset =
-      g.slides ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
-               : Eigen::Vector2d(g.fixed - g.centre);
+      g.slides && !g.on_side ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
+                             : Eigen::Vector2d(g.fixed - g.centre);
   g.margin = (ratio - 1) * (g.reach + offset.norm());
   return g;
 }

@@ -69,11 +69,11 @@ double rim_distortion_bound(double zoom, double ratio);
 /// about the centre of their peaks, or where the regions cross a side of the width x height image
 /// (pixels), about the point of that side nearest it (so the side stays); its reach is the
 /// farthest point of any of the regions from the centre, its footprint the largest ratio of
-/// theirs. A lens alone is a group of one. A group of circles near a side (`slides`) has a
-/// footprint grown as if it were magnified about a point between its centre and the side, the
-/// side's point where it touches it (so the footprint does not jump there). Footprints do not
-/// overlap: where the disks of radius reach + margin of two groups would, the room between their
-/// foci is shared, each given what its ring needs at its zoom and half of what is left (less
+/// theirs. A lens alone is a group of one. A group of circles near a side (`slides`, off every
+/// side) has a footprint grown as if it were magnified about a point between its centre and the
+/// side, the side's point where it touches it (so the footprint does not jump there). Footprints do
+/// not overlap: where the disks of radius reach + margin of two groups would, the room between
+/// their foci is shared, each given what its ring needs at its zoom and half of what is left (less
 /// where the other needs more), so no lens moves another and every margin is continuous in the
 /// lenses' places and zooms (a lens with a near neighbour fits a lower zoom; GeometricLens gives
 /// lenses near each other their zooms first, docs/design.md "Several lenses share room").
@@ -84,8 +84,9 @@ struct FocusGroup {
   /// the point of that side nearest it (the focus is magnified about it, so the side stays).
   Eigen::Vector2d fixed;
   bool on_side = false;  ///< a region crosses (or touches) an image side
-  /// The magnified focus may slide away from the sides, where its ring about the centre has too
-  /// little room (focus_start): a group of circles off every side (docs/design.md, "Sliding").
+  /// The magnified focus may slide where its ring has too little room (focus_start): a group of
+  /// circles off every side, away from them, or crossing one side, along it (docs/design.md,
+  /// "Sliding").
   bool slides = false;
   double reach = 0;  ///< pixels
   /// The footprint (the focus scaled by the ratio about `fixed`) lies in the disk of radius
@@ -195,8 +196,9 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// s >= t and ds/dt <= 1 make g t grow along every ray while R > zoom inner, so no triangle
 /// folds (in the continuum), the focus is magnified exactly, and the image border maps onto
 /// itself. For a circle this is the power ring with its rim. Where the ring has too little room
-/// on the rays towards a side (FocusGroup::slides), the magnified focus slides away from it by
-/// the least v that gives every ray's power law a radial to tangential scale of at least 0.2: a
+/// on the rays towards a side (FocusGroup::slides), the magnified focus slides away from it (or,
+/// about a side's point, along that side) by the least v that gives every ray's power law a
+/// radial to tangential scale of at least 0.2: a
 /// point moves by w v more, w = (1 - g s / R) / (1 - zoom inner / R) (1 in the focus, which is
 /// then magnified about c - v / (zoom - 1), 0 at the edge), which scales that scale along each
 /// ray by one factor, 1 - v.u / (R - zoom inner) (the rim fades as |v| nears half of R - zoom

@@ -354,6 +354,38 @@ TEST(FocusLens, DraggedToAndAcrossASideItGetsItsZoomAllTheWay) {
   }
 }
 
+// A circle pushed across a side near another (254 px below the top, the ring about the side's
+// point short of room along the side) slides along the side, so the side's points stay on it:
+// in 1 px steps from touching the side to 60 px across it its zoom changes by at most 0.03 a
+// pixel and grows as less of it is left (magnified about the side's point alone, it got 1.95
+// touching and 2.51 at 60 px; now 2.67 and 3.45).
+TEST(FocusLens, PushedAcrossASideItSlidesAlongIt) {
+  const GeometricLens geometric(1024, 768);
+  double last = 0;
+  for (int depth = 0; depth <= 60; ++depth) {
+    SCOPED_TRACE(depth);
+    const Lens lens{Region::circle({79.0 - depth, 254}, 79), 3.69};
+    const LensResult r = geometric.solve({lens});
+    const double got = r.zoom_fits.at(0);
+    if (depth > 0) {
+      EXPECT_LE(std::abs(got - last), 0.03);
+      EXPECT_GE(got, last - 1e-9);
+    }
+    last = got;
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    EXPECT_EQ(summarize(measures).flipped, 0);
+    EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
+    const WarpMap map(r.warp);
+    for (double y = 0; y <= 768; y += 16) {
+      const std::optional<Eigen::Vector2d> q = map.forward({0, y});
+      ASSERT_TRUE(q.has_value());
+      EXPECT_NEAR(q->x(), 0, 1e-9) << y;
+    }
+    if (depth == 0) EXPECT_GT(got, 2.6);
+  }
+  EXPECT_GT(last, 3.4);
+}
+
 // A circle dragged in 1 px steps along a side, 6 and 15 px from it, from near one corner to near
 // the other (as in geolens-view's drag test, on its 320 x 240 picture): its zoom changes by at
 // most 0.03 a pixel, is its own where the corners leave it the room, and is never held back by
