@@ -45,6 +45,14 @@ struct Work {
     return cross(V[size_t(t[1])] - V[size_t(t[0])], V[size_t(t[2])] - V[size_t(t[0])]);
   }
 
+  // The lengths of t's edges, shortest first.
+  std::array<double, 3> edge_lengths(const Triangle& t) const {
+    std::array<double, 3> l;
+    for (size_t k = 0; k < 3; ++k) l[k] = (V[size_t(t[(k + 1) % 3])] - V[size_t(t[k])]).norm();
+    std::sort(l.begin(), l.end());
+    return l;
+  }
+
   // Moves free vertex i to p, on `curve`, unless a triangle at it would shrink below a fifth of
   // its area (or fold); locks it if moved.
   bool try_move(int i, const Eigen::Vector2d& p, int curve) {
@@ -349,10 +357,7 @@ void flip_slivers(Work& w, const std::vector<MeshCurve>& curves, const std::vect
   // looked at further.
   const double sin_sliver = std::sin(kSliver);
   auto sliver = [&](const Triangle& t) {
-    std::array<double, 3> l;
-    for (int k = 0; k < 3; ++k)
-      l[size_t(k)] = (w.V[size_t(t[size_t((k + 1) % 3)])] - w.V[size_t(t[size_t(k)])]).norm();
-    std::sort(l.begin(), l.end());
+    const std::array<double, 3> l = w.edge_lengths(t);
     return std::abs(w.area2(t)) < sin_sliver * l[1] * l[2];
   };
   for (int pass = 0; pass < kPasses; ++pass) {
@@ -608,9 +613,7 @@ void merge_coincident(Work& w) {
           u[k] = r == b ? a : r;
         }
         if (u[0] == u[1] || u[1] == u[2] || u[2] == u[0]) continue;  // dropped
-        double longest = 0;
-        for (size_t k = 0; k < 3; ++k)
-          longest = std::max(longest, (w.V[size_t(u[(k + 1) % 3])] - w.V[size_t(u[k])]).norm());
+        const double longest = w.edge_lengths(u)[2];
         if (!(w.area2(u) > 1e-9 * longest * longest)) return false;
       }
     return true;

@@ -198,11 +198,11 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
 /// itself. For a circle this is the power ring with its rim. Where the ring has too little room
 /// on the rays towards a side (FocusGroup::slides), the magnified focus slides away from it (or,
 /// about a side's point, along that side) by the least v that gives every ray's power law a
-/// radial to tangential scale of at least 0.2: a
-/// point moves by w v more, w = (1 - g s / R) / (1 - zoom inner / R) (1 in the focus, which is
-/// then magnified about c - v / (zoom - 1), 0 at the edge), which scales that scale along each
-/// ray by one factor, 1 - v.u / (R - zoom inner) (the rim fades as |v| nears half of R - zoom
-/// inner); the image border, beyond the edge, stays. The groups are applied one after the other;
+/// radial to tangential scale of at least 0.2: a point moves by w v more,
+/// w = (1 - g s / R) / (1 - zoom inner / R) (1 in the focus, which is then magnified about
+/// c - v / (zoom - 1), 0 at the edge), which scales that scale along each ray by one factor,
+/// 1 - v.u / (R - zoom inner) (the rim fades as |v| nears half of R - zoom inner); the image
+/// border, beyond the edge, stays. The groups are applied one after the other;
 /// their footprints do not overlap. Where a triangle of `mesh` still folds (near a polygon's
 /// corner, where the start has a cone that a wide triangle averages badly), the vertices of
 /// folded triangles outside the foci move to the mean of their neighbours, a few rounds, then
