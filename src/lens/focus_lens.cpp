@@ -183,6 +183,10 @@ double turns(const Eigen::Vector2d& w) {
 // The zoom at which the radial bound's distortion reaches 4 (k = 0.2) for an edge / inner ratio.
 constexpr double kFitExponent = 0.8;
 
+// The zoom that fits where the footprint's edge is `ratio` times the focus's extent on the
+// ray that has least room: a radial bound's distortion of 4.
+double zoom_of_room(double ratio) { return ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0; }
+
 // (1 - e^-x) / x, 1 at x = 0: the ring's profile integrals below without their removable
 // singularity.
 double one_minus_exp_over(double x) {
@@ -301,8 +305,13 @@ struct Ring {
     if (group.on_side)
       along = centre.x() == 0 || centre.x() == width ? Eigen::Vector2d::UnitY()
                                                      : Eigen::Vector2d::UnitX();
-    if (group.slides && group.log_zoom > 0)
-      pull = least_slide(group.log_zoom) / std::expm1(group.log_zoom);
+    if (group.slides) slide_for(group.log_zoom);
+  }
+
+  // Makes the focus slide by the least slide at `log_zoom` (none at 0).
+  void slide_for(double log_zoom) {
+    pull = log_zoom > 0 ? Eigen::Vector2d(least_slide(log_zoom) / std::expm1(log_zoom))
+                        : Eigen::Vector2d::Zero();
   }
 
   // The room on the ray along u: the focus's extent and the footprint's edge less `margin`, and
@@ -658,6 +667,93 @@ double footprint_ratio(const Lens& lens) {
 
 namespace {
 
+// Fractions of a circle's radius: within kSideSnap of a side it is magnified about the side's
+// point; from kSideBand its ring about that point is held, and from kSideReach not tried
+// (magnify_near_side).
+constexpr double kSideSnap = 0.1, kSideBand = 0.5, kSideReach = 1.5, kSideRamp = 1;
+// The share of the way to the side's point a slide off the side may move the magnified focus
+// before the ring about that point is preferred (magnify_near_side).
+constexpr double kSideSlide = 0.75;
+// A slide that fits does so to within about a millionth (least_slide's penalty leaves its cuts a
+// hair violated): it is taken to fit.
+constexpr double kFitTolerance = 1e-6;
+
+// A circle off every side but nearer one than kSideReach times its radius r is magnified either
+// by its ring about its centre, its focus sliding away from the side (Ring::least_slide), or by
+// the ring about the side's point nearest its centre, as if it touched the side (the ring a
+// circle over that side has, so the zoom is continuous where it touches it). Within kSideSnap r
+// of the side, by the second (the slide off the side stretched the thin gap until the mesh
+// folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
+// continuous with the other's: the slide to what the ring about the side's point fits times
+// psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w
+// falling from 1 at kSideBand r to 0 at kSideReach r, and to 0 where another side is within
+// r / 2 (a footprint about a side's point reaching into a corner made a degenerate mesh; 1 / 8
+// of any zoom is below the least asked). The slide is taken where it fits the group's zoom (it
+// is nearer the pointer) unless it moves the magnified focus kSideSlide of the way to the side's
+// point and the other fits too; else the ring about the side's point. The zoom obtained, the
+// largest that fits, is the larger of the two held fits, continuous in the circle's place, size
+// and zoom (the warp is not: the magnified focus moves by tens of pixels where the one gives way
+// to the other). The least of a held fit and the zoom is FocusGroup::most_zoom.
+void magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds, double ratio,
+                       const std::vector<Lens>& lenses, double width, double height) {
+  std::array<double, 4> gaps = {bounds.min().x(), width - bounds.max().x(), bounds.min().y(),
+                                height - bounds.max().y()};
+  const size_t side = size_t(std::min_element(gaps.begin(), gaps.end()) - gaps.begin());
+  const double gap = gaps[side] / g.reach;
+  if (!(gap < kSideReach)) return;
+  gaps[side] = std::numeric_limits<double>::infinity();
+  const double other = *std::min_element(gaps.begin(), gaps.end()) / g.reach;
+  FocusGroup at_side = g;
+  at_side.on_side = true;
+  if (side < 2)
+    at_side.fixed.x() = side == 0 ? 0 : width;
+  else
+    at_side.fixed.y() = side == 2 ? 0 : height;
+  at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
+  if (gap < kSideSnap) {
+    g = at_side;
+    return;
+  }
+  // The zoom the ring about the side's point fits at log zoom L, over e^L (>= 1 where it fits):
+  // one ring (band 0: a mesh that follows the circle; the cell is then unused), slid for each L.
+  std::optional<Ring> about_side;
+  auto fit = [&](double log_zoom) {
+    if (about_side) {
+      about_side->slide_for(log_zoom);
+    } else {
+      FocusGroup at = at_side;
+      at.log_zoom = log_zoom;
+      about_side.emplace(at, lenses, g.reach, 0, width, height);
+    }
+    return zoom_of_room(about_side->min_ratio(log_zoom).ratio) / std::exp(log_zoom);
+  };
+  const double log_psi = kSideRamp * (gap - kSideSnap);
+  const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0) *
+                   std::clamp(2 * other - 1, 0.0, 1.0);
+  const double log_phi = (w - 1) * std::log(8.0);
+  // The slide, held: it fits at L and the ring about the side's point fits at L - ln psi (each
+  // ring is found only where the choice needs it: a ring is 720 rays).
+  const Ring sliding(g, lenses, g.reach, 0, width, height);
+  const double off = zoom_of_room(sliding.min_ratio(g.log_zoom).ratio) / std::exp(g.log_zoom);
+  const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
+  // Where the slide moves the focus nearly as far, the ring about the side's point is taken if
+  // it fits too: the slide's thin gap folded the mesh (r 22 at zoom 4.26, 7-9 px off the side).
+  const bool far = sliding.pull.norm() >= kSideSlide * (at_side.fixed - g.centre).norm();
+  g.side = (at_side.fixed - g.centre).normalized();
+  if (slid >= 1 - kFitTolerance && !far) return;
+  // The ring about the side's point, held: it fits at L - ln phi.
+  const double touching = w > 0 ? fit(g.log_zoom - log_phi) : 0.0;
+  if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return;
+  const Eigen::Vector2d towards = g.side;
+  if (touching >= slid || far) {
+    g = at_side;
+    g.side = towards;
+  }
+  // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds
+  // it short.
+  g.most_zoom = std::exp(g.log_zoom) * std::max(slid, touching);
+}
+
 // The group of lenses `members` at `log_zooms`, with the margin of its own footprint (before any
 // room is shared with a neighbour).
 FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lenses,
@@ -699,6 +795,8 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
       g.slides && !g.on_side ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
                              : Eigen::Vector2d(g.fixed - g.centre);
   g.margin = (ratio - 1) * (g.reach + offset.norm());
+  if (g.slides && !g.on_side && g.lenses.size() == 1 && g.log_zoom > 0)
+    magnify_near_side(g, bounds, ratio, lenses, width, height);
   return g;
 }
 
@@ -822,16 +920,11 @@ double rim_distortion_bound(double zoom, double ratio) {
   return (1 + rim.b * rim.a) * (1 + power) - 1;
 }
 
-namespace {
-// The zoom that fits where the footprint's edge is `ratio` times the focus's extent on the
-// ray that has least room: a radial bound's distortion of 4.
-double zoom_of_room(double ratio) { return ratio > 1 ? std::pow(ratio, kFitExponent) : 1.0; }
-}  // namespace
-
 double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,
                           double band, double width, double height) {
-  return zoom_of_room(
-      Ring(group, lenses, cell, band, width, height).min_ratio(group.log_zoom).ratio);
+  return std::min(
+      group.most_zoom,
+      zoom_of_room(Ring(group, lenses, cell, band, width, height).min_ratio(group.log_zoom).ratio));
 }
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
@@ -845,8 +938,14 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
         }))
       continue;
     const Ring ring(group, lenses, cell, band, width, height);
-    const Ring::Room room = ring.min_ratio(group.log_zoom);
-    for (size_t k : group.lenses) fits[k] = zoom_of_room(room.ratio);
+    Ring::Room room = ring.min_ratio(group.log_zoom);
+    double fit = zoom_of_room(room.ratio);
+    if (group.most_zoom < fit) {
+      fit = group.most_zoom;
+      room.by = Ring::Room::By::kSide;
+      room.u = group.side;
+    }
+    for (size_t k : group.lenses) fits[k] = fit;
     if (!reasons) continue;
     std::string why;
     if (room.by == Ring::Room::By::kSide) {

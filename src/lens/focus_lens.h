@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,7 +72,9 @@ double rim_distortion_bound(double zoom, double ratio);
 /// farthest point of any of the regions from the centre, its footprint the largest ratio of
 /// theirs. A lens alone is a group of one. A group of circles near a side (`slides`, off every
 /// side) has a footprint grown as if it were magnified about a point between its centre and the
-/// side, the side's point where it touches it (so the footprint does not jump there). Footprints do
+/// side, the side's point where it touches it (so the footprint does not jump there); a circle
+/// within a tenth of its radius of a side, or nearer than its radius where that fits more, is
+/// magnified about the side's point as if it touched it (most_zoom). Footprints do
 /// not overlap: where the disks of radius reach + margin of two groups would, the room between
 /// their foci is shared, each given what its ring needs at its zoom and half of what is left (less
 /// where the other needs more), so no lens moves another and every margin is continuous in the
@@ -93,6 +96,11 @@ struct FocusGroup {
   /// reach + margin about the centre, pixels.
   double margin = 0;
   double log_zoom = 0;  ///< the focus's
+  /// The most zoom a circle near a side fits, below its ring's own fit where that is held so that
+  /// the zoom is continuous from its slide off the side to the ring about the side's point, and
+  /// the direction to that side (docs/design.md, "Sliding").
+  double most_zoom = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d side = Eigen::Vector2d::Zero();
   /// A lens of the nearest group whose footprint made this group's margin shrink (the most), -1
   /// if none did.
   int neighbour = -1;

@@ -386,6 +386,34 @@ TEST(FocusLens, PushedAcrossASideItSlidesAlongIt) {
   EXPECT_GT(last, 3.4);
 }
 
+// A circle nearing a side in half- and, from 3 px, quarter-pixel steps, to touching it and across:
+// its zoom changes by at most 0.02 a step, never for the mesh, and is what its focus measures.
+// Within a tenth of its radius of the side it is magnified about the side's point, as it is
+// touching it (its slide off the side stretched the gap until the mesh folded: r 22 at 4.26
+// got 1.79 and 1.0 at 1 and 0.5 px from the side, and 3.19 at 7-9 px, r 105 at 2.94 got 2.35 a
+// quarter pixel off and 2.16 touching); beyond, its slide off the side is held within
+// e^(gap / r - 0.1) times that ring's fit.
+TEST(FocusLens, NearingASideInQuarterPixelsItsZoomIsContinuous) {
+  LensOptions options;
+  options.mesh = 100;
+  const GeometricLens geometric(1024, 768, options);
+  for (const auto& [radius, zoom] : {std::pair{22.0, 4.26}, std::pair{105.0, 2.94}}) {
+    double last = 0;
+    for (double gap = 14; gap >= -1; gap -= gap > 3 ? 0.5 : 0.25) {
+      SCOPED_TRACE("r " + std::to_string(radius) + ", " + std::to_string(gap) + " px off the side");
+      const Lens lens{Region::circle({radius + gap, 393.73}, radius), zoom};
+      const LensResult r = geometric.solve({lens});
+      const double got = r.zoom_fits.at(0);
+      EXPECT_FALSE(r.mesh_limited);
+      if (gap < 14) EXPECT_LE(std::abs(got - last), 0.02);
+      const TriangleDistortion measures = measure_triangles(r.warp);
+      EXPECT_EQ(summarize(measures).flipped, 0);
+      EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
+      last = got;
+    }
+  }
+}
+
 // A circle dragged in 1 px steps along a side, 6 and 15 px from it, from near one corner to near
 // the other (as in geolens-view's drag test, on its 320 x 240 picture): its zoom changes by at
 // most 0.03 a pixel, is its own where the corners leave it the room, and is never held back by

@@ -270,13 +270,15 @@ TEST(LensSession, DraftsOnTheirOwnGrid) {
   EXPECT_THROW(LensSession(1024, 1024, options), InvalidInput);
 }
 
-// A draft its grid cannot hold (a circle near a side whose ring folds the 24 grid: GeometricLens
-// says mesh_limited) is solved on the next draft grid, twice as fine: still a draft, the one a
-// session drafting on the 48 grid makes, coarser than the full frame.
+// A draft its grid cannot hold (a circle under two cells of the 24 grid beside a large lens:
+// GeometricLens says mesh_limited) is solved on the next draft grid, twice as fine: still a
+// draft, the one a session drafting on the 48 grid makes, coarser than the full frame. (A circle
+// r 90 2 px off a side was held by the 24 grid until it was magnified about the side's point.)
 TEST(LensSession, ADraftItsGridCannotHoldGoesToAFinerDraftGrid) {
   LensOptions options;
   options.mesh = 24;
-  const std::vector<Lens> lenses = {Lens{Region::circle({92, 500}, 90), 2.5}};
+  const std::vector<Lens> lenses = {Lens{Region::circle({300, 300}, 200), 2},
+                                    Lens{Region::circle({850, 850}, 20), 3}};
   ASSERT_TRUE(GeometricLens(1024, 1024, options).solve(lenses).mesh_limited);
   options.mesh = 100;
   options.draft_mesh = 24;
