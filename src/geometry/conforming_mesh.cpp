@@ -600,10 +600,15 @@ void merge_coincident(Work& w) {
     while (into[size_t(v)] != v) v = into[size_t(v)];
     return v;
   };
+  auto coincident = [&](int a, int b) {
+    return (w.V[size_t(a)] - w.V[size_t(b)]).norm() <= w.on_curve;
+  };
   // Whether merging root b into root a keeps every triangle at b that is left counter-clockwise
   // and not flat (its height over its longest edge above 1e-9: a merge near a side once left
   // three vertices 1e-5 px from it, none on it, as a triangle 1.3 px long of 1e-14 px^2, which
-  // the warp's measure read as flipped).
+  // the warp's measure read as flipped). A triangle left with two coincident corners is dropped by
+  // their merge in turn (the refinement once split three edges at one point: the first merge of
+  // the three was refused for the triangle the third made flat, and the mesh kept all three).
   auto keeps_orientation = [&](int a, int b) {
     for (int m : members[size_t(b)])
       for (int f : w.around[size_t(m)]) {
@@ -612,7 +617,8 @@ void merge_coincident(Work& w) {
           const int r = root(w.F[size_t(f)][k]);
           u[k] = r == b ? a : r;
         }
-        if (u[0] == u[1] || u[1] == u[2] || u[2] == u[0]) continue;  // dropped
+        if (coincident(u[0], u[1]) || coincident(u[1], u[2]) || coincident(u[2], u[0]))
+          continue;  // dropped
         const double longest = w.edge_lengths(u)[2];
         if (!(w.area2(u) > 1e-9 * longest * longest)) return false;
       }
@@ -622,9 +628,7 @@ void merge_coincident(Work& w) {
   for (const Triangle& t : w.F)
     for (size_t k = 0; k < 3; ++k) {
       int a = root(t[k]), b = root(t[(k + 1) % 3]);
-      if (a == b || w.sides[size_t(a)] != w.sides[size_t(b)] ||
-          (w.V[size_t(a)] - w.V[size_t(b)]).norm() > w.on_curve)
-        continue;
+      if (a == b || w.sides[size_t(a)] != w.sides[size_t(b)] || !coincident(a, b)) continue;
       if (a > b) std::swap(a, b);
       if (!keeps_orientation(a, b)) continue;
       into[size_t(b)] = a;

@@ -414,6 +414,22 @@ TEST(FocusLens, NearingASideInQuarterPixelsItsZoomIsContinuous) {
   }
 }
 
+// A circle 20 px below the top side, 160 px from the left one, magnified about the side's point
+// above it: its mesh's refinement split three edges at one point, whose merge was refused (each
+// step left a triangle flat with the third), and the solve refused the mesh as degenerate. Now
+// solved at its zoom, nothing flipped, the focus exact.
+TEST(FocusLens, ACircleNearASideHasNoCoincidentVertices) {
+  LensOptions options;
+  options.mesh = 100;
+  const Lens lens{Region::circle({160, 70}, 50), 3};
+  LensResult r;
+  ASSERT_NO_THROW(r = GeometricLens(1024, 768, options).solve({lens}));
+  EXPECT_DOUBLE_EQ(r.zoom_fits.at(0), 3);
+  const TriangleDistortion measures = measure_triangles(r.warp);
+  EXPECT_EQ(summarize(measures).flipped, 0);
+  EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, 3, 3e-4);
+}
+
 // A circle dragged in 1 px steps along a side, 6 and 15 px from it, from near one corner to near
 // the other (as in geolens-view's drag test, on its 320 x 240 picture): its zoom changes by at
 // most 0.03 a pixel, is its own where the corners leave it the room, and is never held back by
