@@ -686,9 +686,9 @@ constexpr double kFitTolerance = 1e-6;
 // folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
 // continuous with the other's: the slide to what the ring about the side's point fits times
 // psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w
-// falling from 1 at kSideBand r to 0 at kSideReach r, and to 0 where another side is within
-// r / 2 (a footprint about a side's point reaching into a corner made a degenerate mesh; 1 / 8
-// of any zoom is below the least asked). The slide is taken where it fits the group's zoom (it
+// falling from 1 at kSideBand r to 0 at kSideReach r, and to 0 as another side comes from r to
+// r / 2 away (that ring has little room in a corner; 1 / 8 of any zoom is below the least
+// asked). The slide is taken where it fits the group's zoom (it
 // is nearer the pointer) unless it moves the magnified focus kSideSlide of the way to the side's
 // point and the other fits too; else the ring about the side's point. The zoom obtained, the
 // largest that fits, is the larger of the two held fits, continuous in the circle's place, size
