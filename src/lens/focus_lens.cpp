@@ -688,9 +688,9 @@ constexpr double kFitTolerance = 1e-6;
 // psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w
 // falling from 1 at kSideBand r to 0 at kSideReach r, and to 0 as another side comes from r to
 // r / 2 away (that ring has little room in a corner; 1 / 8 of any zoom is below the least
-// asked). The slide is taken where it fits the group's zoom (it
-// is nearer the pointer) unless it moves the magnified focus kSideSlide of the way to the side's
-// point and the other fits too; else the ring about the side's point. The zoom obtained, the
+// asked). The slide is taken where it fits the group's zoom (it is nearer the pointer) unless it
+// moves the magnified focus kSideSlide of the way to the side's point and the other fits too;
+// else the ring about the side's point. The zoom obtained, the
 // largest that fits, is the larger of the two held fits, continuous in the circle's place, size
 // and zoom (the warp is not: the magnified focus moves by tens of pixels where the one gives way
 // to the other). The least of a held fit and the zoom is FocusGroup::most_zoom.
@@ -710,12 +710,17 @@ void magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds, double 
   else
     at_side.fixed.y() = side == 2 ? 0 : height;
   at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
+  g.side = at_side.side = (at_side.fixed - g.centre).normalized();
   if (gap < kSideSnap) {
     g = at_side;
     return;
   }
-  // The zoom the ring about the side's point fits at log zoom L, over e^L (>= 1 where it fits):
-  // one ring (band 0: a mesh that follows the circle; the cell is then unused), slid for each L.
+  // The zoom a ring fits at log zoom L, over e^L (>= 1 where it fits).
+  auto fit_of = [](const Ring& ring, double log_zoom) {
+    return zoom_of_room(ring.min_ratio(log_zoom).ratio) / std::exp(log_zoom);
+  };
+  // The same of the ring about the side's point: one ring (band 0: a mesh that follows the
+  // circle; the cell is then unused), slid for each L.
   std::optional<Ring> about_side;
   auto fit = [&](double log_zoom) {
     if (about_side) {
@@ -725,7 +730,7 @@ void magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds, double 
       at.log_zoom = log_zoom;
       about_side.emplace(at, lenses, g.reach, 0, width, height);
     }
-    return zoom_of_room(about_side->min_ratio(log_zoom).ratio) / std::exp(log_zoom);
+    return fit_of(*about_side, log_zoom);
   };
   const double log_psi = kSideRamp * (gap - kSideSnap);
   const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0) *
@@ -734,21 +739,16 @@ void magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds, double 
   // The slide, held: it fits at L and the ring about the side's point fits at L - ln psi (each
   // ring is found only where the choice needs it: a ring is 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
-  const double off = zoom_of_room(sliding.min_ratio(g.log_zoom).ratio) / std::exp(g.log_zoom);
+  const double off = fit_of(sliding, g.log_zoom);
   const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
   // Where the slide moves the focus nearly as far, the ring about the side's point is taken if
   // it fits too: the slide's thin gap folded the mesh (r 22 at zoom 4.26, 7-9 px off the side).
   const bool far = sliding.pull.norm() >= kSideSlide * (at_side.fixed - g.centre).norm();
-  g.side = (at_side.fixed - g.centre).normalized();
   if (slid >= 1 - kFitTolerance && !far) return;
   // The ring about the side's point, held: it fits at L - ln phi.
   const double touching = w > 0 ? fit(g.log_zoom - log_phi) : 0.0;
   if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return;
-  const Eigen::Vector2d towards = g.side;
-  if (touching >= slid || far) {
-    g = at_side;
-    g.side = towards;
-  }
+  if (touching >= slid || far) g = at_side;
   // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds
   // it short.
   g.most_zoom = std::exp(g.log_zoom) * std::max(slid, touching);
