@@ -285,6 +285,9 @@ struct Ring {
   // it is on none).
   Eigen::Vector2d along = Eigen::Vector2d::Zero();
   double disk_radius, ratio, near, cell, width, height, margin = 0;
+  // How far the centre, a side's point, is from the focus (beyond `near`), pixels: 0 for a ring
+  // about the group's centre, or about a side's point in a region.
+  double apart = 0;
   std::vector<double> inner_;          // per bin, or one value for a circle about its centre
   std::vector<RingDistance> regions_;  // the group's
 
@@ -308,10 +311,16 @@ struct Ring {
     if (group.slides) slide_for(group.log_zoom);
   }
 
-  // Makes the focus slide by the least slide at `log_zoom` (none at 0).
+  // Makes the focus slide by the least slide at `log_zoom` (none at 0). About a side's point,
+  // the point the focus is magnified about stays on the side, between its corners (beyond, a
+  // ring short of room along the side folded the mesh; the ring about the corner is tried
+  // there, magnify_near_side).
   void slide_for(double log_zoom) {
     pull = log_zoom > 0 ? Eigen::Vector2d(least_slide(log_zoom) / std::expm1(log_zoom))
                         : Eigen::Vector2d::Zero();
+    if (along == Eigen::Vector2d::Zero()) return;
+    const double at = centre.dot(along), length = along.x() > 0 ? width : height;
+    pull = std::clamp(pull.dot(along), at - length, at) * along;
   }
 
   // The room on the ray along u: the focus's extent and the footprint's edge less `margin`, and
@@ -432,6 +441,11 @@ struct Ring {
   void place_at(const Eigen::Vector2d& c, const FocusGroup& group,
                 const std::vector<Lens>& lenses) {
     centre = c;
+    if (group.on_side) {
+      apart = std::numeric_limits<double>::infinity();
+      for (const RingDistance& region : regions_) apart = std::min(apart, region(centre).rounded);
+      apart = std::max(apart - near, 0.0);
+    }
     const double reach = group.reach + (centre - group.centre).norm() + near;
     if (group.lenses.size() == 1 && centre == group.centre &&
         lenses[group.lenses[0]].region.circle()) {
@@ -569,7 +583,12 @@ struct Ring {
       p.distance = std::min(p.distance, d.exact);
       rounded = std::min(rounded, d.rounded);
     }
-    p.s = std::max(p.t, p.inner + std::max(rounded - near, 0.0));
+    // A centre `apart` from the focus (a side's point off the regions) is in it for s: the
+    // distance counts apart (1 - t / apart) less, so every ray begins at inner, and the slide,
+    // which differs from ray to ray beyond the focus, is the focus's at the centre (it tore the
+    // map there: a circle 20 px below the top side, magnified about the side's point, sliding).
+    const double lead = apart > 0 ? apart * std::max(1 - p.t / apart, 0.0) : 0.0;
+    p.s = std::max(p.t, p.inner + std::max(rounded - near - lead, 0.0));
     return p;
   }
 
@@ -671,8 +690,8 @@ namespace {
 // point; from kSideBand its ring about that point is held, and from kSideReach not tried
 // (magnify_near_side).
 constexpr double kSideSnap = 0.1, kSideBand = 0.5, kSideReach = 1.5, kSideRamp = 1;
-// The share of the way to the side's point a slide off the side may move the magnified focus
-// before the ring about that point is preferred (magnify_near_side).
+// The share of the way to the side's point (or the corner) a slide off the side (or along it) may
+// move the magnified focus before the ring about that point is preferred (magnify_near_side).
 constexpr double kSideSlide = 0.75;
 // A slide that fits does so to within about a millionth (least_slide's penalty leaves its cuts a
 // hair violated): it is taken to fit.
@@ -681,77 +700,99 @@ constexpr double kFitTolerance = 1e-6;
 // A circle off every side but nearer one than kSideReach times its radius r is magnified either
 // by its ring about its centre, its focus sliding away from the side (Ring::least_slide), or by
 // the ring about the side's point nearest its centre, as if it touched the side (the ring a
-// circle over that side has, so the zoom is continuous where it touches it). Within kSideSnap r
-// of the side, by the second (the slide off the side stretched the thin gap until the mesh
-// folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
-// continuous with the other's: the slide to what the ring about the side's point fits times
-// psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w
-// falling from 1 at kSideBand r to 0 at kSideReach r, and to 0 as another side comes from r to
-// r / 2 away (that ring has little room in a corner; 1 / 8 of any zoom is below the least
-// asked). The slide is taken where it fits the group's zoom (it is nearer the pointer) unless it
-// moves the magnified focus kSideSlide of the way to the side's point and the other fits too;
-// else the ring about the side's point. The zoom obtained, the
-// largest that fits, is the larger of the two held fits, continuous in the circle's place, size
-// and zoom (the warp is not: the magnified focus moves by tens of pixels where the one gives way
-// to the other). The least of a held fit and the zoom is FocusGroup::most_zoom.
-void magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds, double ratio,
-                       const std::vector<Lens>& lenses, double width, double height) {
+// circle over that side has, so the zoom is continuous where it touches it), its focus sliding
+// along the side. A circle over one side, or magnified about its point, is magnified the same
+// way near a second side: by its slide along the first or by the ring about their corner (the
+// ring a circle over both has). Within kSideSnap r of the side, by the second (the slide off the
+// side stretched the thin gap until the mesh folded: a circle a fifth of a pixel off the side
+// fitted 1.0). Beyond, each is held to a zoom continuous with the other's: the slide to what the
+// ring about the side's point fits times psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to
+// its own fit times phi = 8^(w - 1), w falling from 1 at kSideBand r to 0 at kSideReach r (1 / 8
+// of any zoom is below the least asked); a ring about a corner to the lesser of its two sides'
+// phi (`log_held`, the log of the phi its caller holds the result to, so the two are not
+// multiplied). A ring is held at the footprint it would have at the held zoom (a footprint twice
+// the zoom held to phi times its fit at the group's footprint gave a zoom of phi^5 times). The
+// slide is taken where it fits the group's zoom (it is nearer the pointer) unless it moves the
+// magnified focus kSideSlide of the way to the side's point and the other fits too; else the ring
+// about the side's point. The zoom obtained, the largest that fits, is the larger of the two held
+// fits, continuous in the circle's place, size and zoom (the warp is not: the magnified focus
+// moves by tens of pixels where the one gives way to the other). The least of a held fit and the
+// zoom is FocusGroup::most_zoom. Returns the zoom the choice fits over the group's, held, where
+// the choice found it; nothing where g is as it was or its ring tells it.
+std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds,
+                                        double ratio, const std::vector<Lens>& lenses, double width,
+                                        double height, double log_held = 0) {
   std::array<double, 4> gaps = {bounds.min().x(), width - bounds.max().x(), bounds.min().y(),
                                 height - bounds.max().y()};
+  // A group about a side's point is near only the two sides across it; the point it is
+  // magnified about unmoved is its centre's nearest on that side.
+  Eigen::Vector2d unmoved = g.centre;
+  if (g.on_side) {
+    const size_t on = g.fixed.x() == 0 || g.fixed.x() == width ? 0 : 2;
+    gaps[on] = gaps[on + 1] = std::numeric_limits<double>::infinity();
+    unmoved[on / 2] = g.fixed[on / 2];
+  }
   const size_t side = size_t(std::min_element(gaps.begin(), gaps.end()) - gaps.begin());
   const double gap = gaps[side] / g.reach;
-  if (!(gap < kSideReach)) return;
-  gaps[side] = std::numeric_limits<double>::infinity();
-  const double other = *std::min_element(gaps.begin(), gaps.end()) / g.reach;
+  if (!(gap < kSideReach)) return std::nullopt;
+  // Near a second side, the ring about their corner.
+  const bool corner = g.on_side;
   FocusGroup at_side = g;
+  at_side.fixed[side / 2] = side % 2 == 0 ? 0 : (side < 2 ? width : height);
   at_side.on_side = true;
-  if (side < 2)
-    at_side.fixed.x() = side == 0 ? 0 : width;
-  else
-    at_side.fixed.y() = side == 2 ? 0 : height;
   at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
+  // Along the side (not about a corner).
+  at_side.slides = !corner;
   g.side = at_side.side = (at_side.fixed - g.centre).normalized();
-  if (gap < kSideSnap) {
-    g = at_side;
-    return;
-  }
-  // The zoom a ring fits at log zoom L, over e^L (>= 1 where it fits).
+  // The footprint ratio at log zoom L: a footprint that follows the zoom grows with it, so a
+  // ring held to a fraction of its fit is held to that fraction of the zoom it gets.
+  const bool follows = !(lenses[g.lenses.front()].footprint > 0);
+  auto ratio_at = [&](double log_zoom) {
+    return follows ? ratio * std::exp(log_zoom - g.log_zoom) : ratio;
+  };
+  // The zoom a ring fits at L, over e^L (>= 1 where it fits).
   auto fit_of = [](const Ring& ring, double log_zoom) {
     return zoom_of_room(ring.min_ratio(log_zoom).ratio) / std::exp(log_zoom);
   };
-  // The same of the ring about the side's point: one ring (band 0: a mesh that follows the
-  // circle; the cell is then unused), slid for each L.
-  std::optional<Ring> about_side;
-  auto fit = [&](double log_zoom) {
-    if (about_side) {
-      about_side->slide_for(log_zoom);
-    } else {
-      FocusGroup at = at_side;
-      at.log_zoom = log_zoom;
-      about_side.emplace(at, lenses, g.reach, 0, width, height);
-    }
-    return fit_of(*about_side, log_zoom);
+  // The same of the ring about the side's point (band 0: a mesh that follows the circle; the
+  // cell is then unused), with its choice near the next side.
+  auto fit = [&](double log_zoom, double log_hold) {
+    FocusGroup at = at_side;
+    at.log_zoom = log_zoom;
+    at.margin = (ratio_at(log_zoom) - 1) * (g.reach + (at.fixed - g.centre).norm());
+    if (!corner)
+      if (const std::optional<double> held =
+              magnify_near_side(at, bounds, ratio_at(log_zoom), lenses, width, height, log_hold))
+        return *held;
+    return fit_of(Ring(at, lenses, g.reach, 0, width, height), log_zoom);
   };
+  // Magnifies g about the side's point (and, off a corner, chooses near the next side).
+  auto take_side = [&]() -> std::optional<double> {
+    g = at_side;
+    return corner ? std::nullopt : magnify_near_side(g, bounds, ratio, lenses, width, height);
+  };
+  if (gap < kSideSnap) return take_side();
   const double log_psi = kSideRamp * (gap - kSideSnap);
-  const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0) *
-                   std::clamp(2 * other - 1, 0.0, 1.0);
-  const double log_phi = (w - 1) * std::log(8.0);
+  const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0);
+  const double log_phi = std::min((w - 1) * std::log(8.0) - log_held, 0.0);
   // The slide, held: it fits at L and the ring about the side's point fits at L - ln psi (each
   // ring is found only where the choice needs it: a ring is 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
   const double off = fit_of(sliding, g.log_zoom);
-  const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
+  const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi, 0));
   // Where the slide moves the focus nearly as far, the ring about the side's point is taken if
   // it fits too: the slide's thin gap folded the mesh (r 22 at zoom 4.26, 7-9 px off the side).
-  const bool far = sliding.pull.norm() >= kSideSlide * (at_side.fixed - g.centre).norm();
-  if (slid >= 1 - kFitTolerance && !far) return;
+  const bool far =
+      (g.fixed - sliding.pull - unmoved).norm() >= kSideSlide * (at_side.fixed - unmoved).norm();
+  if (slid >= 1 - kFitTolerance && !far) return slid;
   // The ring about the side's point, held: it fits at L - ln phi.
-  const double touching = w > 0 ? fit(g.log_zoom - log_phi) : 0.0;
-  if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return;
-  if (touching >= slid || far) g = at_side;
+  const double touching = w > 0 ? fit(g.log_zoom - log_phi, log_phi) : 0.0;
+  if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return slid;
+  if (touching >= slid || far) take_side();
   // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds
   // it short.
-  g.most_zoom = std::exp(g.log_zoom) * std::max(slid, touching);
+  g.most_zoom = std::min(g.most_zoom, std::exp(g.log_zoom) * std::max(slid, touching));
+  return std::max(slid, touching);
 }
 
 // The group of lenses `members` at `log_zooms`, with the margin of its own footprint (before any
@@ -795,7 +836,7 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
       g.slides && !g.on_side ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
                              : Eigen::Vector2d(g.fixed - g.centre);
   g.margin = (ratio - 1) * (g.reach + offset.norm());
-  if (g.slides && !g.on_side && g.lenses.size() == 1 && g.log_zoom > 0)
+  if (g.slides && g.lenses.size() == 1 && g.log_zoom > 0)
     magnify_near_side(g, bounds, ratio, lenses, width, height);
   return g;
 }
