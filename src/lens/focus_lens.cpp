@@ -573,7 +573,12 @@ struct Ring {
   Place place(const Eigen::Vector2d& q) const {
     Place p;
     p.t = (q - centre).norm();
-    p.u = p.t > 0 ? Eigen::Vector2d((q - centre) / p.t) : Eigen::Vector2d(1, 0);
+    // The centre's ray points into the image, towards the group's centre (about a point of the
+    // right side, the ray along x left the image at once: a vertex there stayed while its
+    // neighbours moved with the focus, and the mesh folded).
+    p.u = p.t > 0                 ? Eigen::Vector2d((q - centre) / p.t)
+          : disk_centre != centre ? Eigen::Vector2d((disk_centre - centre).normalized())
+                                  : Eigen::Vector2d(1, 0);
     p.inner = inner(p.u);
     p.edge = edge(p.u, p.inner);
     double rounded = std::numeric_limits<double>::infinity();

@@ -491,6 +491,23 @@ TEST(FocusLens, DraggedIntoACornerItsZoomIsContinuous) {
   }
 }
 
+// A circle (r 50 at zoom 3 on 1024 x 768) dragged 1 px a step along the right side, 20 px from
+// it, is magnified about the side's point and gets its zoom at every step. Where a vertex of the
+// mesh lay on that point (every 16 px) the point's ray pointed out of the image, so the vertex
+// stayed while its neighbours moved with the focus, and the mesh folded: 1.0 at y = 144, 160,
+// 176, 192 and 208.
+TEST(FocusLens, AboutAPointOfTheRightSideItsCentreMovesWithTheFocus) {
+  LensOptions options;
+  options.mesh = 100;
+  const GeometricLens geometric(1024, 768, options);
+  for (int y = 150; y <= 210; ++y) {
+    SCOPED_TRACE(y);
+    const LensResult r = geometric.solve({Lens{Region::circle({954, double(y)}, 50), 3}});
+    EXPECT_DOUBLE_EQ(r.zoom_fits.at(0), 3);
+    EXPECT_FALSE(r.mesh_limited);
+  }
+}
+
 // A warp's scale along the ray from `origin` in unit direction `u` (source pixels): at t, the
 // component along u of how far the points at t and t + step apart go, over step (5 px, a cell
 // of the 400 grid, so that the mesh's piecewise linear steps do not count).
