@@ -702,28 +702,29 @@ constexpr double kSideSlide = 0.75;
 // hair violated): it is taken to fit.
 constexpr double kFitTolerance = 1e-6;
 
-// A circle off every side but nearer one than kSideReach times its radius r is magnified either
-// by its ring about its centre, its focus sliding away from the side (Ring::least_slide), or by
-// the ring about the side's point nearest its centre, as if it touched the side (the ring a
-// circle over that side has, so the zoom is continuous where it touches it), its focus sliding
-// along the side. A circle over one side, or magnified about its point, is magnified the same
-// way near a second side: by its slide along the first or by the ring about their corner (the
-// ring a circle over both has). Within kSideSnap r of the side, by the second (the slide off the
-// side stretched the thin gap until the mesh folded: a circle a fifth of a pixel off the side
-// fitted 1.0). Beyond, each is held to a zoom continuous with the other's: the slide to what the
-// ring about the side's point fits times psi = e^(kSideRamp (gap / r - kSideSnap)), that ring to
-// its own fit times phi = 8^(w - 1), w falling from 1 at kSideBand r to 0 at kSideReach r (1 / 8
-// of any zoom is below the least asked); a ring about a corner to the lesser of its two sides'
-// phi (`log_held`, the log of the phi its caller holds the result to, so the two are not
-// multiplied). A ring is held at the footprint it would have at the held zoom (a footprint twice
-// the zoom held to phi times its fit at the group's footprint gave a zoom of phi^5 times). The
-// slide is taken where it fits the group's zoom (it is nearer the pointer) unless it moves the
-// magnified focus kSideSlide of the way to the side's point and the other fits too; else the ring
-// about the side's point. The zoom obtained, the largest that fits, is the larger of the two held
-// fits, continuous in the circle's place, size and zoom (the warp is not: the magnified focus
-// moves by tens of pixels where the one gives way to the other). The least of a held fit and the
-// zoom is FocusGroup::most_zoom. Returns the zoom the choice fits over the group's, held, where
-// the choice found it; nothing where g is as it was or its ring tells it.
+// A lens alone off every side but nearer one than kSideReach times its reach r is magnified
+// either by its ring about its centre, a circle's focus sliding away from the side
+// (Ring::least_slide), or by the ring about the side's point nearest its centre, as if it touched
+// the side (the ring a region over that side has, so the zoom is continuous where it touches it),
+// a circle's focus sliding along the side. One over one side, or magnified about its point, is
+// magnified the same way near a second side: by its ring about that point (a circle's sliding
+// along the first side) or by the ring about their corner (the ring a region over both has). Within
+// kSideSnap r of the side, by the second (the slide off the side stretched the thin gap until the
+// mesh folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
+// continuous with the other's: the slide to what the ring about the side's point fits times psi =
+// e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w falling
+// from 1 at kSideBand r to 0 at kSideReach r (1 / 8 of any zoom is below the least asked); a ring
+// about a corner to the lesser of its two sides' phi (`log_held`, the log of the phi its caller
+// holds the result to, so the two are not multiplied). A ring is held at the footprint it would
+// have at the held zoom (a footprint twice the zoom held to phi times its fit at the group's
+// footprint gave a zoom of phi^5 times). The slide is taken where it fits the group's zoom (it is
+// nearer the pointer) unless it moves the magnified focus kSideSlide of the way to the side's point
+// and the other fits too; else the ring about the side's point. The zoom obtained, the largest that
+// fits, is the larger of the two held fits, continuous in the circle's place, size and zoom (the
+// warp is not: the magnified focus moves by tens of pixels where the one gives way to the other).
+// The least of a held fit and the zoom is FocusGroup::most_zoom. Returns the zoom the choice fits
+// over the group's, held, where the choice found it; nothing where g is as it was or its ring tells
+// it.
 std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds,
                                         double ratio, const std::vector<Lens>& lenses, double width,
                                         double height, double log_held = 0) {
@@ -746,8 +747,8 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   at_side.fixed[side / 2] = side % 2 == 0 ? 0 : (side < 2 ? width : height);
   at_side.on_side = true;
   at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
-  // Along the side (not about a corner).
-  at_side.slides = !corner;
+  // A circle's along the side (not about a corner).
+  at_side.slides = g.slides && !corner;
   g.side = at_side.side = (at_side.fixed - g.centre).normalized();
   // The footprint ratio at log zoom L: a footprint that follows the zoom grows with it, so a
   // ring held to a fraction of its fit is held to that fraction of the zoom it gets.
@@ -841,7 +842,7 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
       g.slides && !g.on_side ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
                              : Eigen::Vector2d(g.fixed - g.centre);
   g.margin = (ratio - 1) * (g.reach + offset.norm());
-  if (g.slides && g.lenses.size() == 1 && g.log_zoom > 0)
+  if (sides <= 1 && g.lenses.size() == 1 && g.log_zoom > 0)
     magnify_near_side(g, bounds, ratio, lenses, width, height);
   return g;
 }

@@ -72,15 +72,16 @@ double rim_distortion_bound(double zoom, double ratio);
 /// farthest point of any of the regions from the centre, its footprint the largest ratio of
 /// theirs. A lens alone is a group of one. A group of circles near a side (`slides`, off every
 /// side) has a footprint grown as if it were magnified about a point between its centre and the
-/// side, the side's point where it touches it (so the footprint does not jump there); a circle
-/// within a tenth of its radius of a side, or nearer than 1.5 radii where that fits more or its
-/// slide would take its focus most of the way there, is magnified about the side's point as if
-/// it touched it (most_zoom). Footprints do
-/// not overlap: where the disks of radius reach + margin of two groups would, the room between
-/// their foci is shared, each given what its ring needs at its zoom and half of what is left (less
-/// where the other needs more), so no lens moves another and every margin is continuous in the
-/// lenses' places and zooms (a lens with a near neighbour fits a lower zoom; GeometricLens gives
-/// lenses near each other their zooms first, docs/design.md "Several lenses share room").
+/// side, the side's point where it touches it (so the footprint does not jump there); a lens
+/// alone within a tenth of its reach of a side, or nearer than 1.5 reaches where that fits more
+/// or a circle's slide would take its focus most of the way there, is magnified about the side's
+/// point as if it touched it, and one over a side near another about their corner (most_zoom).
+/// Footprints do not overlap: where the disks of radius reach + margin of two groups would, the
+/// room between their foci is shared, each given what its ring needs at its zoom and half of what
+/// is left (less where the other needs more), so no lens moves another and every margin is
+/// continuous in the lenses' places and zooms (a lens with a near neighbour fits a lower zoom;
+/// GeometricLens gives lenses near each other their zooms first, docs/design.md "Several lenses
+/// share room").
 struct FocusGroup {
   std::vector<size_t> lenses;  ///< the members, indices into the lenses
   Eigen::Vector2d centre;      ///< the peak of a lens alone, pixels

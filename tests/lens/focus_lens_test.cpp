@@ -508,6 +508,37 @@ TEST(FocusLens, AboutAPointOfTheRightSideItsCentreMovesWithTheFocus) {
   }
 }
 
+// A hexagon (reach 50 at zoom 3 on 1024 x 768) dragged 2 px a step towards the left side until
+// it touches it: near the side it is magnified about the side's point, as a polygon over it is,
+// chosen and held as a circle is (magnify_near_side), so its zoom changes by at most 0.3 a step
+// and never falls below 1.5, nothing flips, and it gets 3 touching the side. (Magnified about
+// its centre, its ring clipped by the side, it fell to 1.0 in the last pixels and sprang to 3
+// when it touched the side.)
+TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
+  LensOptions options;
+  options.mesh = 100;
+  const GeometricLens geometric(1024, 768, options);
+  double last = 0;
+  for (int gap = 60; gap >= 0; gap -= 2) {
+    SCOPED_TRACE(gap);
+    std::vector<Eigen::Vector2d> hexagon;
+    for (int k = 0; k < 6; ++k)
+      hexagon.emplace_back(gap + 50 + 50 * std::cos(k * std::numbers::pi / 3),
+                           384 + 50 * std::sin(k * std::numbers::pi / 3));
+    const Lens lens{Region::polygon(hexagon), 3};
+    const LensResult r = geometric.solve({lens});
+    const double got = r.zoom_fits.at(0);
+    EXPECT_FALSE(r.mesh_limited);
+    EXPECT_GE(got, 1.5);
+    if (gap < 60) EXPECT_LE(std::abs(got - last), 0.3);
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    EXPECT_EQ(summarize(measures).flipped, 0);
+    EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
+    last = got;
+  }
+  EXPECT_NEAR(last, 3, 1e-9);
+}
+
 // A warp's scale along the ray from `origin` in unit direction `u` (source pixels): at t, the
 // component along u of how far the points at t and t + step apart go, over step (5 px, a cell
 // of the 400 grid, so that the mesh's piecewise linear steps do not count).
