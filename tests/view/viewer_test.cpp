@@ -224,7 +224,8 @@ std::vector<FrameRow> frame_rows(const std::string& text) {
 // moves, the full mesh once it rests): a circle dragged to and across the top side gets its zoom
 // in every frame shown (its magnified focus slides away from the side), and one dragged along
 // the side, 6 px below it, from near a corner to near the other, gets a zoom that changes by at
-// most 0.03 a pixel between frames and is its own where the corners leave it the room.
+// most 0.03 a pixel between frames and is its own where the corners leave it the room; one
+// dragged along it into a corner keeps a continuous zoom.
 TEST_F(View, ADragToAlongAndAcrossASideShowsAContinuousZoom) {
   auto drag = [&](const std::string& name, const std::string& lens, const std::string& to,
                   int steps) {
@@ -257,6 +258,17 @@ TEST_F(View, ADragToAlongAndAcrossASideShowsAContinuousZoom) {
     full = full || b.got == b.asked;
   }
   EXPECT_TRUE(full);
+  // Along the top side into the corner, until it touches the left side: magnified about the
+  // corner near it, never below 1.5 (it fell to 1.0), at most 0.3 a pixel, 3 touching.
+  const std::vector<FrameRow> into = drag("into", "circle:120,30,24:3", "24 30", 96);
+  ASSERT_FALSE(into.empty());
+  for (size_t k = 1; k < into.size(); ++k) {
+    const FrameRow &a = into[k - 1], &b = into[k];
+    EXPECT_GE(b.got, 1.5) << "frame " << b.frame;
+    EXPECT_LE(std::abs(b.got - a.got), 0.3 * std::abs(b.x - a.x) + 1e-9) << "frame " << b.frame;
+  }
+  EXPECT_EQ(into.back().x, 24);
+  EXPECT_NEAR(into.back().got, 3, 1e-9);
 }
 
 // Dragged past another lens, 1 source pixel a frame, 40 px below it: the two share the room
