@@ -333,9 +333,18 @@ struct Ring {
     const double inner_u = inner(u);
     return {inner_u, edge(u, inner_u) - margin, ray_exits(centre, u, width, height).minCoeff() > 0};
   }
-  static Eigen::Vector2d ray_direction(int k) {
-    const double a = 2 * std::numbers::pi * (k + 0.5) / kRays;
-    return Eigen::Vector2d(std::cos(a), std::sin(a));
+  // The unit direction of ray k (a table made once: every ring measures its room on them, and
+  // a choice near a side measures several rings per zoom tried).
+  static const Eigen::Vector2d& ray_direction(int k) {
+    static const std::array<Eigen::Vector2d, kRays> directions = [] {
+      std::array<Eigen::Vector2d, kRays> d;
+      for (int j = 0; j < kRays; ++j) {
+        const double a = 2 * std::numbers::pi * (j + 0.5) / kRays;
+        d[size_t(j)] = Eigen::Vector2d(std::cos(a), std::sin(a));
+      }
+      return d;
+    }();
+    return directions[size_t(k)];
   }
 
   // The least slide v of the magnified focus (pixels) at `log_zoom` with which the ring's
