@@ -715,9 +715,9 @@ constexpr double kFitTolerance = 1e-6;
 // either by its ring about its centre, a circle's focus sliding away from the side
 // (Ring::least_slide), or by the ring about the side's point nearest its centre, as if it touched
 // the side (the ring a region over that side has, so the zoom is continuous where it touches it),
-// a circle's focus sliding along the side. One over one side, or magnified about its point, is
-// magnified the same way near a second side: by its ring about that point (a circle's sliding
-// along the first side) or by the ring about their corner (the ring a region over both has). Within
+// its focus sliding along the side. One over one side, or magnified about its point, is
+// magnified the same way near a second side: by its ring about that point, sliding along the
+// first side, or by the ring about their corner (the ring a region over both has). Within
 // kSideSnap r of the side, by the second (the slide off the side stretched the thin gap until the
 // mesh folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
 // continuous with the other's: the slide to what the ring about the side's point fits times psi =
@@ -756,8 +756,9 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   at_side.fixed[side / 2] = side % 2 == 0 ? 0 : (side < 2 ? width : height);
   at_side.on_side = true;
   at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
-  // A circle's along the side (not about a corner).
-  at_side.slides = g.slides && !corner;
+  // Along the side (not about a corner; a polygon's slide off a side folded its corners on the
+  // mesh, one along a side does not).
+  at_side.slides = !corner;
   g.side = at_side.side = (at_side.fixed - g.centre).normalized();
   // The footprint ratio at log zoom L: a footprint that follows the zoom grows with it, so a
   // ring held to a fraction of its fit is held to that fraction of the zoom it gets.
@@ -839,9 +840,9 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
   const int sides = (bounds.min().x() <= 0) + (bounds.max().x() >= width) +
                     (bounds.min().y() <= 0) + (bounds.max().y() >= height);
   g.on_side = sides > 0;
-  g.slides = sides <= 1 && std::all_of(g.lenses.begin(), g.lenses.end(), [&](size_t k) {
-               return lenses[k].region.circle().has_value();
-             });
+  g.slides = sides <= 1 && (std::all_of(g.lenses.begin(), g.lenses.end(),
+                                        [&](size_t k) { return lenses[k].region.circle(); }) ||
+                            (sides == 1 && g.lenses.size() == 1));
   // The footprint, the focus scaled by the ratio about that point, lies within the disk of
   // radius ratio (reach + |fixed - centre|) - |fixed - centre| about the centre. A focus near a
   // side slides away from it (Ring::least_slide), magnified about a point between the centre

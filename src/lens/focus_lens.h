@@ -90,8 +90,8 @@ struct FocusGroup {
   Eigen::Vector2d fixed;
   bool on_side = false;  ///< a region crosses (or touches) an image side
   /// The magnified focus may slide where its ring has too little room (focus_start): a group of
-  /// circles off every side, away from them, or crossing one side, along it (docs/design.md,
-  /// "Sliding").
+  /// circles off every side, away from them, or crossing one side, along it, and a lens alone
+  /// over one side (or magnified about its point), along it (docs/design.md, "Sliding").
   bool slides = false;
   double reach = 0;  ///< pixels
   /// The footprint (the focus scaled by the ratio about `fixed`) lies in the disk of radius

@@ -509,11 +509,11 @@ TEST(FocusLens, AboutAPointOfTheRightSideItsCentreMovesWithTheFocus) {
 }
 
 // A hexagon (reach 50 at zoom 3 on 1024 x 768) dragged 2 px a step towards the left side until
-// it touches it: near the side it is magnified about the side's point, as a polygon over it is,
-// chosen and held as a circle is (magnify_near_side), so its zoom changes by at most 0.3 a step
-// and never falls below 1.5, nothing flips, and it gets 3 touching the side. (Magnified about
-// its centre, its ring clipped by the side, it fell to 1.0 in the last pixels and sprang to 3
-// when it touched the side.)
+// it touches it, and along the top side into the corner: near the side it is magnified about the
+// side's point, as a polygon over it is, chosen and held as a circle is (magnify_near_side), so its
+// zoom changes by at most 0.3 a step and never falls below 1.5, nothing flips, and it gets 3
+// touching the side. (Magnified about its centre, its ring clipped by the side, it fell to 1.0 in
+// the last pixels and sprang to 3 when it touched the side.)
 TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
   LensOptions options;
   options.mesh = 100;
@@ -534,6 +534,24 @@ TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
     const TriangleDistortion measures = measure_triangles(r.warp);
     EXPECT_EQ(summarize(measures).flipped, 0);
     EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
+    last = got;
+  }
+  EXPECT_NEAR(last, 3, 1e-9);
+  // Touching the top side, dragged 4 px a step into the corner: it slides along the side (a
+  // polygon did not, and fell to 1.0 a pixel from the left side), then the corner's ring.
+  for (int x = 250; x >= 50; x -= 4) {
+    SCOPED_TRACE(x);
+    std::vector<Eigen::Vector2d> hexagon;
+    for (int k = 0; k < 6; ++k)
+      hexagon.emplace_back(
+          x + 50 * std::cos(k * std::numbers::pi / 3),
+          std::max(50 * (std::sin(std::numbers::pi / 3) + std::sin(k * std::numbers::pi / 3)),
+                   0.0));
+    const LensResult r = geometric.solve({Lens{Region::polygon(hexagon), 3}});
+    const double got = r.zoom_fits.at(0);
+    EXPECT_FALSE(r.mesh_limited);
+    EXPECT_GE(got, 2);
+    if (x < 250) EXPECT_LE(std::abs(got - last), 0.5);
     last = got;
   }
   EXPECT_NEAR(last, 3, 1e-9);
