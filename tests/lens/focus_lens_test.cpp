@@ -518,14 +518,18 @@ TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
   LensOptions options;
   options.mesh = 100;
   const GeometricLens geometric(1024, 768, options);
+  // The hexagon about (x, y), its vertices on the image (a rounding above the top side is 0).
+  auto hexagon = [](double x, double y) {
+    std::vector<Eigen::Vector2d> vertices;
+    for (int k = 0; k < 6; ++k)
+      vertices.emplace_back(x + 50 * std::cos(k * std::numbers::pi / 3),
+                            std::max(y + 50 * std::sin(k * std::numbers::pi / 3), 0.0));
+    return Region::polygon(vertices);
+  };
   double last = 0;
   for (int gap = 60; gap >= 0; gap -= 2) {
     SCOPED_TRACE(gap);
-    std::vector<Eigen::Vector2d> hexagon;
-    for (int k = 0; k < 6; ++k)
-      hexagon.emplace_back(gap + 50 + 50 * std::cos(k * std::numbers::pi / 3),
-                           384 + 50 * std::sin(k * std::numbers::pi / 3));
-    const Lens lens{Region::polygon(hexagon), 3};
+    const Lens lens{hexagon(gap + 50, 384), 3};
     const LensResult r = geometric.solve({lens});
     const double got = r.zoom_fits.at(0);
     EXPECT_FALSE(r.mesh_limited);
@@ -541,13 +545,8 @@ TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
   // polygon did not, and fell to 1.0 a pixel from the left side), then the corner's ring.
   for (int x = 250; x >= 50; x -= 4) {
     SCOPED_TRACE(x);
-    std::vector<Eigen::Vector2d> hexagon;
-    for (int k = 0; k < 6; ++k)
-      hexagon.emplace_back(
-          x + 50 * std::cos(k * std::numbers::pi / 3),
-          std::max(50 * (std::sin(std::numbers::pi / 3) + std::sin(k * std::numbers::pi / 3)),
-                   0.0));
-    const LensResult r = geometric.solve({Lens{Region::polygon(hexagon), 3}});
+    const LensResult r =
+        geometric.solve({Lens{hexagon(x, 50 * std::sin(std::numbers::pi / 3)), 3}});
     const double got = r.zoom_fits.at(0);
     EXPECT_FALSE(r.mesh_limited);
     EXPECT_GE(got, 2);
