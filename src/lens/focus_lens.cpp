@@ -700,7 +700,7 @@ double footprint_ratio(const Lens& lens) {
 
 namespace {
 
-// Fractions of a circle's radius: within kSideSnap of a side it is magnified about the side's
+// Fractions of a lens's reach: within kSideSnap of a side it is magnified about the side's
 // point; from kSideBand its ring about that point is held, and from kSideReach not tried
 // (magnify_near_side).
 constexpr double kSideSnap = 0.1, kSideBand = 0.5, kSideReach = 1.5, kSideRamp = 1;
@@ -721,22 +721,22 @@ constexpr double kFitTolerance = 1e-6;
 // kSideSnap r of the side, by the second (the slide off the side stretched the thin gap until the
 // mesh folded: a circle a fifth of a pixel off the side fitted 1.0). Beyond, each is held to a zoom
 // continuous with the other's: the slide to what the ring about the side's point fits times psi =
-// e^(kSideRamp (gap / r - kSideSnap)), that ring to its own fit times phi = 8^(w - 1), w falling
-// from 1 at kSideBand r to 0 at kSideReach r (1 / 8 of any zoom is below the least asked); a ring
-// about a corner to the lesser of its two sides' phi (`log_held`, the log of the phi its caller
-// holds the result to, so the two are not multiplied). A ring is held at the footprint it would
-// have at the held zoom (a footprint twice the zoom held to phi times its fit at the group's
-// footprint gave a zoom of phi^5 times). The slide is taken where it fits the group's zoom (it is
-// nearer the pointer) unless it moves the magnified focus kSideSlide of the way to the side's point
-// and the other fits too; else the ring about the side's point. The zoom obtained, the largest that
-// fits, is the larger of the two held fits, continuous in the circle's place, size and zoom (the
-// warp is not: the magnified focus moves by tens of pixels where the one gives way to the other).
-// The least of a held fit and the zoom is FocusGroup::most_zoom. Returns the zoom the choice fits
-// over the group's, held, where the choice found it; nothing where g is as it was or its ring tells
-// it.
+// e^(kSideRamp (gap / r - kSideSnap)) (that ring measured with the footprint it would have at
+// the held zoom: a footprint twice the zoom held to psi times its fit at the group's footprint
+// gave a zoom of psi^5 times), that ring to what the slide fits times 8^w, w falling from 1 at
+// kSideBand r to 0 at kSideReach r, so it adds nothing where it comes in (held to 8^(w - 1) times
+// its own fit instead, it left the zoom of a circle along a side into a corner at 1.86-2.3 between
+// places that got 3, and changed it by up to ln 8 / r of itself a pixel). The slide is taken where
+// it fits the group's zoom (it is nearer the pointer) unless it moves the magnified focus
+// kSideSlide of the way to the side's point and the other fits too; else the ring about the side's
+// point. The zoom obtained, the largest that fits, is the larger of the two held fits, continuous
+// in the circle's place, size and zoom (the warp is not: the magnified focus moves by tens of
+// pixels where the one gives way to the other). The least of a held fit and the zoom is
+// FocusGroup::most_zoom. Returns the zoom the choice fits over the group's, held, where the choice
+// found it; nothing where g is as it was or its ring tells it.
 std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds,
                                         double ratio, const std::vector<Lens>& lenses, double width,
-                                        double height, double log_held = 0) {
+                                        double height) {
   std::array<double, 4> gaps = {bounds.min().x(), width - bounds.max().x(), bounds.min().y(),
                                 height - bounds.max().y()};
   // A group about a side's point is near only the two sides across it; the point it is
@@ -772,13 +772,13 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   };
   // The same of the ring about the side's point (band 0: a mesh that follows the circle; the
   // cell is then unused), with its choice near the next side.
-  auto fit = [&](double log_zoom, double log_hold) {
+  auto fit = [&](double log_zoom) {
     FocusGroup at = at_side;
     at.log_zoom = log_zoom;
     at.margin = (ratio_at(log_zoom) - 1) * (g.reach + (at.fixed - g.centre).norm());
     if (!corner)
       if (const std::optional<double> held =
-              magnify_near_side(at, bounds, ratio_at(log_zoom), lenses, width, height, log_hold))
+              magnify_near_side(at, bounds, ratio_at(log_zoom), lenses, width, height))
         return *held;
     return fit_of(Ring(at, lenses, g.reach, 0, width, height), log_zoom);
   };
@@ -790,19 +790,18 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   if (gap < kSideSnap) return take_side();
   const double log_psi = kSideRamp * (gap - kSideSnap);
   const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0);
-  const double log_phi = std::min((w - 1) * std::log(8.0) - log_held, 0.0);
   // The slide, held: it fits at L and the ring about the side's point fits at L - ln psi (each
   // ring is found only where the choice needs it: a ring is 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
   const double off = fit_of(sliding, g.log_zoom);
-  const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi, 0));
+  const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
   // Where the slide moves the focus nearly as far, the ring about the side's point is taken if
   // it fits too: the slide's thin gap folded the mesh (r 22 at zoom 4.26, 7-9 px off the side).
   const bool far =
       (g.fixed - sliding.pull - unmoved).norm() >= kSideSlide * (at_side.fixed - unmoved).norm();
   if (slid >= 1 - kFitTolerance && !far) return slid;
-  // The ring about the side's point, held: it fits at L - ln phi.
-  const double touching = w > 0 ? fit(g.log_zoom - log_phi, log_phi) : 0.0;
+  // The ring about the side's point, held.
+  const double touching = w > 0 ? std::min(fit(g.log_zoom), slid * std::pow(8.0, w)) : 0.0;
   if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return slid;
   if (touching >= slid || far) take_side();
   // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds

@@ -459,11 +459,13 @@ TEST(FocusLens, DraggedAlongASideItsZoomIsContinuous) {
 
 // A circle (r 50 at zoom 3 on 1024 x 768) dragged 2 px a step along the top side, 20 px below
 // it, into the top-left corner, and along the corner's diagonal to touching both sides: its zoom
-// changes by at most 0.15 a pixel, never falls below 1.9, is never held back by the mesh, and is
+// changes by at most 0.125 a pixel, never falls below 2.3, is never held back by the mesh, and is
 // what its focus measures, nothing flipped. Near the second side it is magnified about their
 // corner, held so the zoom is continuous (the ring about the top side's point, sliding along it
 // past the corner, folded the mesh: 1.18-1.21 between places that got 2.0-2.6, and 1.0 in the
-// last pixels; along the diagonal 1.32 a quarter pixel off both sides, 3 touching them).
+// last pixels; along the diagonal 1.32 a quarter pixel off both sides, 3 touching them; the
+// corner's ring held to 8^(w - 1) times its own fit left 1.95 along the side and 2.09 on the
+// diagonal, and changes of 0.13 a pixel).
 TEST(FocusLens, DraggedIntoACornerItsZoomIsContinuous) {
   LensOptions options;
   options.mesh = 100;
@@ -480,8 +482,8 @@ TEST(FocusLens, DraggedIntoACornerItsZoomIsContinuous) {
       const LensResult r = geometric.solve({lens});
       const double got = r.zoom_fits.at(0);
       EXPECT_FALSE(r.mesh_limited);
-      EXPECT_GE(got, 1.9);
-      if (&centre != &path->front()) EXPECT_LE(std::abs(got - last), 0.3);
+      EXPECT_GE(got, 2.3);
+      if (&centre != &path->front()) EXPECT_LE(std::abs(got - last), 0.25);
       const TriangleDistortion measures = measure_triangles(r.warp);
       EXPECT_EQ(summarize(measures).flipped, 0);
       EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
