@@ -702,7 +702,7 @@ namespace {
 
 // Fractions of a lens's reach: within kSideSnap of a side it is magnified about the side's
 // point; from kSideBand its ring about that point is held, and from kSideReach not tried
-// (magnify_near_side).
+// (magnify_near_side). kSideRamp: the slide's hold grows by e^kSideRamp a reach.
 constexpr double kSideSnap = 0.1, kSideBand = 0.5, kSideReach = 1.5, kSideRamp = 1;
 // The share of the way to the side's point (or the corner) a slide off the side (or along it) may
 // move the magnified focus before the ring about that point is preferred (magnify_near_side).
@@ -790,8 +790,9 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   if (gap < kSideSnap) return take_side();
   const double log_psi = kSideRamp * (gap - kSideSnap);
   const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0);
-  // The slide, held: it fits at L and the ring about the side's point fits at L - ln psi (each
-  // ring is found only where the choice needs it: a ring is 720 rays).
+  // The slide (a polygon's or a mask's ring about its centre, unslid), held: it fits at L and
+  // the ring about the side's point fits at L - ln psi (each ring is found only where the choice
+  // needs it: a ring is 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
   const double off = fit_of(sliding, g.log_zoom);
   const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
