@@ -771,9 +771,10 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
     return zoom_of_room(ring.min_ratio(log_zoom).ratio) / std::exp(log_zoom);
   };
   // The same of the ring about the side's point (band 0: a mesh that follows the circle; the
-  // cell is then unused), with its choice near the next side.
-  auto fit = [&](double log_zoom) {
-    FocusGroup at = at_side;
+  // cell is then unused), with its choice near the next side, which `chosen` gets if given.
+  auto fit = [&](double log_zoom, FocusGroup* chosen = nullptr) {
+    FocusGroup local = at_side;
+    FocusGroup& at = chosen ? (*chosen = at_side) : local;
     at.log_zoom = log_zoom;
     at.margin = (ratio_at(log_zoom) - 1) * (g.reach + (at.fixed - g.centre).norm());
     if (!corner)
@@ -782,10 +783,12 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
         return *held;
     return fit_of(Ring(at, lenses, g.reach, 0, width, height), log_zoom);
   };
-  // Magnifies g about the side's point (and, off a corner, chooses near the next side).
+  // Magnifies g about the side's point and chooses near the next side (as fit did: touched).
+  std::optional<FocusGroup> touched;
   auto take_side = [&]() -> std::optional<double> {
-    g = at_side;
-    return corner ? std::nullopt : magnify_near_side(g, bounds, ratio, lenses, width, height);
+    g = touched.value_or(at_side);
+    if (corner || touched) return std::nullopt;
+    return magnify_near_side(g, bounds, ratio, lenses, width, height);
   };
   if (gap < kSideSnap) return take_side();
   const double log_psi = kSideRamp * (gap - kSideSnap);
@@ -802,7 +805,8 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
       (g.fixed - sliding.pull - unmoved).norm() >= kSideSlide * (at_side.fixed - unmoved).norm();
   if (slid >= 1 - kFitTolerance && !far) return slid;
   // The ring about the side's point, held.
-  const double touching = w > 0 ? std::min(fit(g.log_zoom), slid * std::pow(8.0, w)) : 0.0;
+  const double touching =
+      w > 0 ? std::min(fit(g.log_zoom, &touched.emplace()), slid * std::pow(8.0, w)) : 0.0;
   if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return slid;
   if (touching >= slid || far) take_side();
   // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds
