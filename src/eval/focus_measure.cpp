@@ -61,8 +61,7 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose();
     bool beyond = true;
-    for (const FocusGroup& g : groups)
-      beyond = beyond && (p - g.centre).norm() >= g.reach + g.margin;
+    for (const FocusGroup& g : groups) beyond = beyond && (p - g.centre).norm() >= g.disk_radius();
     if (!beyond) continue;
     const size_t k = nearest_lens(lenses, p).first;
     out[k].displacement_beyond_footprint = std::max(

@@ -668,6 +668,96 @@ struct Ring {
   }
 };
 
+// A group's warp: its ring, or where it blends two (FocusGroup::blend), the sum of their moves
+// weighed. Each ring's Jacobian in its footprint is its radial and tangential scales along and
+// across its ray (for a circle about its centre: symmetric and positive definite), 1 beyond, and
+// in the focus the zoom, unrotated: the blend magnifies the focus by the zoom, and a weighed sum
+// of symmetric positive definite matrices is one whose ratio of singular values is at most the
+// largest of theirs (its extreme eigenvalues lie between the weighed sums of theirs), so the
+// blend folds nothing and its distortion is at most its rings' (a slide's shear and a polygon's
+// envelope make a Jacobian a little unsymmetric: the anisotropy's slack).
+struct Warp {
+  struct Part {
+    Ring ring;
+    double weight;     // the weights sum to 1
+    double log_share;  // its log zoom less the group's
+  };
+  std::vector<Part> parts;
+
+  Warp(const FocusGroup& group, const std::vector<Lens>& lenses, double cell, double band,
+       double width, double height) {
+    add(group, 1, 0, lenses, cell, band, width, height);
+  }
+  void add(FocusGroup group, double weight, double log_share, const std::vector<Lens>& lenses,
+           double cell, double band, double width, double height) {
+    const double t = group.blend ? group.blend_weight : 0.0;
+    const double own = std::log((1 - t * group.blend_zoom) / (1 - t));
+    const std::shared_ptr<const FocusGroup> blend = std::move(group.blend);
+    group.log_zoom += own;  // (its slide is found at its own zoom)
+    parts.push_back(
+        {Ring(group, lenses, cell, band, width, height), weight * (1 - t), log_share + own});
+    if (blend)
+      add(*blend, weight * t, log_share + std::log(group.blend_zoom), lenses, cell, band, width,
+          height);
+  }
+  const Ring& ring() const { return parts.front().ring; }
+
+  // Where q lies on every ring's ray.
+  struct Place {
+    std::vector<Ring::Place> at;
+    double distance = 0;  // from q to the group's nearest region (exact), pixels
+    double depth = 1;     // the least s / edge over the rings whose footprint holds q, else 1
+    bool in_footprint() const { return depth < 1; }
+  };
+  Place place(const Eigen::Vector2d& q) const {
+    Place p;
+    for (const Part& part : parts) {
+      p.at.push_back(part.ring.place(q));
+      if (p.at.back().in_footprint()) p.depth = std::min(p.depth, p.at.back().s / p.at.back().edge);
+    }
+    p.distance = p.at.front().distance;
+    return p;
+  }
+  // Whether a ring moves q.
+  bool moves(const Place& p) const {
+    for (size_t i = 0; i < parts.size(); ++i)
+      if (p.at[i].in_footprint() && parts[i].ring.moves(p.at[i])) return true;
+    return false;
+  }
+  // Where the warp at `log_zoom` moves q, at p.
+  Eigen::Vector2d moved(const Eigen::Vector2d& q, const Place& p, double log_zoom) const {
+    Eigen::Vector2d out = q;
+    for (size_t i = 0; i < parts.size(); ++i)
+      if (p.at[i].in_footprint() && parts[i].ring.moves(p.at[i]))
+        out += parts[i].weight * (parts[i].ring.moved(p.at[i], log_zoom + parts[i].log_share) - q);
+    return out;
+  }
+  // The largest distortion of its rings at q (the ratio of the radial to the tangential scale,
+  // or its inverse where a slid ring stretches along the ray), 1 beyond every footprint.
+  double distortion(const Place& p, double log_zoom) const {
+    double most = 1;
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (!p.at[i].in_footprint()) continue;
+      const double k = parts[i].ring.radial(p.at[i], log_zoom + parts[i].log_share);
+      most = std::max(most, std::max(1 / std::max(k, 1e-9), k));
+    }
+    return most;
+  }
+  // The footprint is the union of the rings': its level is the least of theirs, and a point of
+  // its edge near q the one of the ring whose level is least there.
+  double level(const Eigen::Vector2d& q) const {
+    double least = std::numeric_limits<double>::infinity();
+    for (const Part& part : parts) least = std::min(least, part.ring.level(q));
+    return least;
+  }
+  Eigen::Vector2d onto_edge(const Eigen::Vector2d& q) const {
+    const Ring* least = &ring();
+    for (const Part& part : parts)
+      if (part.ring.level(q) < least->level(q)) least = &part.ring;
+    return least->onto_edge(q);
+  }
+};
+
 // The fractions of a log zoom tried, in order, when a ring folds the mesh or its start is not
 // admissible.
 constexpr std::array<double, 5> kZoomFractions = {1.0, 0.8, 0.6, 0.4, 0.2};
@@ -704,12 +794,52 @@ namespace {
 // point; from kSideBand its ring about that point is held, and from kSideReach not tried
 // (magnify_near_side). kSideRamp: the slide's hold grows by e^kSideRamp a reach.
 constexpr double kSideSnap = 0.1, kSideBand = 0.5, kSideReach = 1.5, kSideRamp = 1;
-// The share of the way to the side's point (or the corner) a slide off the side (or along it) may
-// move the magnified focus before the ring about that point is preferred (magnify_near_side).
-constexpr double kSideSlide = 0.75;
+// The ring about a side's point is blended in as a circle's slide off the side moves its
+// magnified focus from kBlendFrom to kSideSlide of the way to where that ring would (the slide's
+// thin gap folded the mesh beyond: r 22 at zoom 4.26, 7-9 px off the side), shifting towards
+// the ring that fits more over kBlendLog in the logs of their shares of the zoom
+// (magnify_near_side).
+constexpr double kBlendFrom = 0.25, kSideSlide = 0.75, kBlendLog = 0.1;
 // A slide that fits does so to within about a millionth (least_slide's penalty leaves its cuts a
 // hair violated): it is taken to fit.
 constexpr double kFitTolerance = 1e-6;
+
+// The margin of the footprint of a focus of extent `reach` scaled by `ratio` about a point
+// `offset` from its centre (pixels): (ratio - 1) (reach + |offset|), at most `most`.
+double footprint_margin(double ratio, double reach, const Eigen::Vector2d& offset, double most) {
+  return std::min(most, (ratio - 1) * (reach + offset.norm()));
+}
+
+// The zoom `ring` fits at log zoom L, over e^L (>= 1 where it fits).
+double fit_over(const Ring& ring, double log_zoom) {
+  return zoom_of_room(ring.min_ratio(log_zoom).ratio) / std::exp(log_zoom);
+}
+
+// The weight of the ring about a side's point blended with a lens's own (FocusGroup::blend), at
+// log zoom L: `near` (0 to 1) as the lens nears the side, shifted towards the ring that fits more
+// (`slid`, the lens's own, and `touching`, each over e^L) over kBlendLog in the logs of their
+// shares of L (a ring that fits no zoom has no weight, whatever the zoom; where both fit, neither
+// is preferred), and at least `snap`: a smoothstep, continuous in each.
+double blend_weight(double slid, double touching, double near, double snap, double log_zoom) {
+  auto share = [&](double fit) { return std::clamp(1 + std::log(fit) / log_zoom, 0.0, 1.0); };
+  const double a = share(slid), b = share(touching);
+  const double apart = a > 0 && b > 0 ? std::log(b / a) : touching > slid ? HUGE_VAL : -HUGE_VAL;
+  return std::max(snap, Rim::fade(apart / kBlendLog + near));
+}
+
+// Blends the ring of `other` into g's with weight t in (0, 1), each ring at the zoom, or where
+// one falls short (its fit over the zoom `slid` for g's, `touching` for other's below 1), at its
+// fit and the other the more; where their weighed fits fall short of the zoom, both beyond their
+// fits in proportion (group_fit bounds how far).
+void blend_into(FocusGroup& g, FocusGroup other, double t, double slid, double touching) {
+  const double mean = (1 - t) * slid + t * touching;
+  g.blend = std::make_shared<const FocusGroup>(std::move(other));
+  g.blend_weight = t;
+  g.blend_zoom = mean < 1       ? touching / mean
+                 : touching < 1 ? touching
+                 : slid < 1     ? (1 - (1 - t) * slid) / t
+                                : 1.0;
+}
 
 // A lens alone off every side but nearer one than kSideReach times its reach r is magnified
 // either by its ring about its centre, a circle's focus sliding away from the side
@@ -726,17 +856,19 @@ constexpr double kFitTolerance = 1e-6;
 // gave a zoom of psi^5 times), that ring to what the slide fits times 8^w, w falling from 1 at
 // kSideBand r to 0 at kSideReach r, so it adds nothing where it comes in (held to 8^(w - 1) times
 // its own fit instead, it left the zoom of a circle along a side into a corner at 1.86-2.3 between
-// places that got 3, and changed it by up to ln 8 / r of itself a pixel). The slide is taken where
-// it fits the group's zoom (it is nearer the pointer) unless it moves the magnified focus
-// kSideSlide of the way to the side's point and the other fits too; else the ring about the side's
-// point. The zoom obtained, the largest that fits, is the larger of the two held fits, continuous
-// in the circle's place, size and zoom (the warp is not: the magnified focus moves by tens of
-// pixels where the one gives way to the other). The least of a held fit and the zoom is
-// FocusGroup::most_zoom. Returns the zoom the choice fits over the group's, held, where the choice
-// found it; nothing where g is as it was or its ring tells it.
+// places that got 3, and changed it by up to ln 8 / r of itself a pixel). The zoom obtained, the
+// largest that fits, is the larger of the two held fits, continuous in the circle's place, size
+// and zoom; the least of it and the zoom is FocusGroup::most_zoom. The warp blends the two rings
+// (FocusGroup::blend): the weight of the ring about the side's point rises smoothly as a
+// circle's slide moves its focus towards where that ring would, shifts towards the ring that
+// fits more, and is 1 from kSideSnap r of the side for a lens that slides, whatever the fits
+// (where one ring gave way to the other at once, the magnified focus moved by up to 112 px in a
+// pixel's drag: a circle r 45 at zoom 3.46, 31 px from the left side of 1024 x 768). Returns the
+// zoom the choice fits over the group's, held, where the choice found it; nothing where g is as it
+// was or its ring tells it. No ring's margin exceeds `most_margin`.
 std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d& bounds,
                                         double ratio, const std::vector<Lens>& lenses, double width,
-                                        double height) {
+                                        double height, double most_margin) {
   std::array<double, 4> gaps = {bounds.min().x(), width - bounds.max().x(), bounds.min().y(),
                                 height - bounds.max().y()};
   // A group about a side's point is near only the two sides across it; the point it is
@@ -755,10 +887,8 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   FocusGroup at_side = g;
   at_side.fixed[side / 2] = side % 2 == 0 ? 0 : (side < 2 ? width : height);
   at_side.on_side = true;
-  at_side.margin = (ratio - 1) * (g.reach + (at_side.fixed - g.centre).norm());
-  // Along the side (not about a corner; a polygon's slide off a side folded its corners on the
-  // mesh, one along a side does not).
-  at_side.slides = !corner;
+  at_side.margin = footprint_margin(ratio, g.reach, at_side.fixed - g.centre, most_margin);
+  at_side.slides = !corner;  // along the side (a polygon's slide off it folded its corners)
   g.side = at_side.side = (at_side.fixed - g.centre).normalized();
   // The footprint ratio at log zoom L: a footprint that follows the zoom grows with it, so a
   // ring held to a fraction of its fit is held to that fraction of the zoom it gets.
@@ -766,59 +896,62 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   auto ratio_at = [&](double log_zoom) {
     return follows ? ratio * std::exp(log_zoom - g.log_zoom) : ratio;
   };
-  // The zoom a ring fits at L, over e^L (>= 1 where it fits).
-  auto fit_of = [](const Ring& ring, double log_zoom) {
-    return zoom_of_room(ring.min_ratio(log_zoom).ratio) / std::exp(log_zoom);
-  };
   // The same of the ring about the side's point (band 0: a mesh that follows the circle; the
   // cell is then unused), with its choice near the next side, which `chosen` gets if given.
   auto fit = [&](double log_zoom, FocusGroup* chosen = nullptr) {
     FocusGroup local = at_side;
     FocusGroup& at = chosen ? (*chosen = at_side) : local;
     at.log_zoom = log_zoom;
-    at.margin = (ratio_at(log_zoom) - 1) * (g.reach + (at.fixed - g.centre).norm());
+    at.margin = footprint_margin(ratio_at(log_zoom), g.reach, at.fixed - g.centre, most_margin);
     if (!corner)
       if (const std::optional<double> held =
-              magnify_near_side(at, bounds, ratio_at(log_zoom), lenses, width, height))
+              magnify_near_side(at, bounds, ratio_at(log_zoom), lenses, width, height, most_margin))
         return *held;
-    return fit_of(Ring(at, lenses, g.reach, 0, width, height), log_zoom);
+    return fit_over(Ring(at, lenses, g.reach, 0, width, height), log_zoom);
   };
   // Magnifies g about the side's point and chooses near the next side (as fit did: touched).
   std::optional<FocusGroup> touched;
   auto take_side = [&]() -> std::optional<double> {
     g = touched.value_or(at_side);
     if (corner || touched) return std::nullopt;
-    return magnify_near_side(g, bounds, ratio, lenses, width, height);
+    return magnify_near_side(g, bounds, ratio, lenses, width, height, most_margin);
   };
-  if (gap < kSideSnap) return take_side();
+  if (gap < kSideSnap && g.slides) return take_side();
   const double log_psi = kSideRamp * (gap - kSideSnap);
   const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0);
   // The slide (a polygon's or a mask's ring about its centre, unslid), held: it fits at L and
   // the ring about the side's point fits at L - ln psi (each ring is found only where the choice
   // needs it: a ring is 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
-  const double off = fit_of(sliding, g.log_zoom);
+  const double off = fit_over(sliding, g.log_zoom);
   const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
-  // Where the slide moves the focus nearly as far, the ring about the side's point is taken if
-  // it fits too: the slide's thin gap folded the mesh (r 22 at zoom 4.26, 7-9 px off the side).
-  const bool far =
-      (g.fixed - sliding.pull - unmoved).norm() >= kSideSlide * (at_side.fixed - unmoved).norm();
-  if (slid >= 1 - kFitTolerance && !far) return slid;
+  // The ring about the side's point is blended in as the slide moves the focus from kBlendFrom
+  // to kSideSlide of the way to where that ring would, and from 2 kSideSnap r to kSideSnap r
+  // of the side for a lens that slides, whatever the fits (blend_weight).
+  const double travel =
+      (g.fixed - sliding.pull - unmoved).norm() / (at_side.fixed - unmoved).norm();
+  const double near = Rim::fade((travel - kBlendFrom) / (kSideSlide - kBlendFrom));
+  const double snap = g.slides ? Rim::fade((2 * kSideSnap - gap) / kSideSnap) : 0.0;
+  if (slid >= 1 - kFitTolerance && near == 0 && snap == 0) return slid;
   // The ring about the side's point, held.
   const double touching =
       w > 0 ? std::min(fit(g.log_zoom, &touched.emplace()), slid * std::pow(8.0, w)) : 0.0;
-  if (slid >= 1 - kFitTolerance && touching < 1 - kFitTolerance) return slid;
-  if (touching >= slid || far) take_side();
-  // Where neither fits, the zoom the held fit tells (the slide's at most), so fitting_zooms finds
-  // it short.
-  g.most_zoom = std::min(g.most_zoom, std::exp(g.log_zoom) * std::max(slid, touching));
-  return std::max(slid, touching);
+  const double t = blend_weight(slid, touching, near, snap, g.log_zoom);
+  if (t == 1) take_side();
+  if (t > 0 && t < 1) blend_into(g, touched.value_or(at_side), t, slid, touching);
+  // The zoom that fits: the larger held fit (continuous where one gives way to the other), the
+  // slide's where it alone has weight; where it falls short, fitting_zooms finds it so.
+  const double fits = t == 0 ? slid : std::max(slid, touching);
+  if (fits < 1 - kFitTolerance || g.blend)
+    g.most_zoom = std::min(g.most_zoom, std::exp(g.log_zoom) * fits);
+  return fits;
 }
 
-// The group of lenses `members` at `log_zooms`, with the margin of its own footprint (before any
-// room is shared with a neighbour).
+// The group of lenses `members` at `log_zooms`, with the margin of its own footprint, at most
+// `most_margin` (the room a neighbour leaves it, share_room).
 FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lenses,
-                      const std::vector<double>& log_zooms, double width, double height) {
+                      const std::vector<double>& log_zooms, double width, double height,
+                      double most_margin = std::numeric_limits<double>::infinity()) {
   FocusGroup g;
   g.lenses = std::move(members);
   Eigen::AlignedBox2d peaks;
@@ -855,24 +988,28 @@ FocusGroup make_group(std::vector<size_t> members, const std::vector<Lens>& lens
   const Eigen::Vector2d offset =
       g.slides && !g.on_side ? estimated_fixed_offset(g.centre, bounds, g.log_zoom, width, height)
                              : Eigen::Vector2d(g.fixed - g.centre);
-  g.margin = (ratio - 1) * (g.reach + offset.norm());
+  g.margin = footprint_margin(ratio, g.reach, offset, most_margin);
   if (sides <= 1 && g.lenses.size() == 1 && g.log_zoom > 0)
-    magnify_near_side(g, bounds, ratio, lenses, width, height);
+    magnify_near_side(g, bounds, ratio, lenses, width, height, most_margin);
   return g;
 }
 
-// Where the disks of radius reach + margin of two groups overlap, the room between their foci
-// (which do not overlap) is shared: each is given what its ring needs at its zoom on the ray
-// towards the other (ring_need) and half of what is left, or less where the other needs more,
-// and never more than its own margin. The margins of a pair then sum to at most the room, every
-// margin is a continuous function of the groups' places and zooms, and a group's is the least
-// over its neighbours, whatever their order. Neither wide footprints (of a lens near a side) nor
-// high requests take a neighbour's room beyond half of what both leave.
-void share_room(std::vector<FocusGroup>& groups) {
-  std::vector<double> own(groups.size()), shrunk(groups.size(), 1.0);
-  for (size_t i = 0; i < groups.size(); ++i) own[i] = groups[i].margin;
-  for (size_t i = 0; i < groups.size(); ++i) {
-    for (size_t j = i + 1; j < groups.size(); ++j) {
+// Where the disks of radius reach + margin of two groups overlap (a blend's the larger of its
+// rings', FocusGroup::disk_radius), the room between their foci (which do not overlap) is
+// shared: each is given what its ring needs at its zoom on the ray towards the other
+// (ring_need) and half of what is left, or less where the other needs more, and never more than
+// its own margin. The margins of a pair then sum to at most the room, every margin is a
+// continuous function of the groups' places and zooms, and a group's is the least over its
+// neighbours, whatever their order. Neither wide footprints (of a lens near a side) nor high
+// requests take a neighbour's room beyond half of what both leave. Returns each group's most
+// margin (infinite where no neighbour shrinks it); a lens alone near a side is made again with
+// it (focus_groups), so its choice of rings sees the room it has.
+std::vector<double> share_room(std::vector<FocusGroup>& groups) {
+  const size_t n = groups.size();
+  std::vector<double> own(n), most(n, std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < n; ++i) own[i] = groups[i].disk_radius() - groups[i].reach;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
       FocusGroup &a = groups[i], &b = groups[j];
       const double room = std::max((a.centre - b.centre).norm() - a.reach - b.reach, 0.0);
       if (own[i] + own[j] <= room) continue;
@@ -881,14 +1018,17 @@ void share_room(std::vector<FocusGroup>& groups) {
       const double half_left = 0.5 * (room - need_a - need_b);
       const double offer_a = std::clamp(std::min(own[i], need_a + half_left), 0.0, room),
                    offer_b = std::clamp(std::min(own[j], need_b + half_left), 0.0, room);
-      a.margin = std::min(a.margin, room - offer_b);
-      b.margin = std::min(b.margin, room - offer_a);
-      const double scale_a = own[i] > 0 ? a.margin / own[i] : 1.0;
-      const double scale_b = own[j] > 0 ? b.margin / own[j] : 1.0;
-      if (scale_a < shrunk[i]) shrunk[i] = scale_a, a.neighbour = int(b.lenses.front());
-      if (scale_b < shrunk[j]) shrunk[j] = scale_b, b.neighbour = int(a.lenses.front());
+      if (room - offer_b < std::min(most[i], own[i])) a.neighbour = int(b.lenses.front());
+      if (room - offer_a < std::min(most[j], own[j])) b.neighbour = int(a.lenses.front());
+      most[i] = std::min(most[i], room - offer_b);
+      most[j] = std::min(most[j], room - offer_a);
     }
   }
+  for (size_t i = 0; i < n; ++i) {
+    if (!(most[i] < own[i])) most[i] = std::numeric_limits<double>::infinity();
+    groups[i].margin = std::min(groups[i].margin, most[i]);
+  }
+  return most;
 }
 
 }  // namespace
@@ -935,7 +1075,13 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
   std::vector<FocusGroup> groups;
   for (std::vector<size_t>& m : members)
     groups.push_back(make_group(std::move(m), lenses, log_zooms, width, height));
-  share_room(groups);
+  const std::vector<double> most = share_room(groups);
+  for (size_t i = 0; i < groups.size(); ++i) {
+    if (groups[i].lenses.size() > 1 || !std::isfinite(most[i])) continue;
+    const int neighbour = groups[i].neighbour;
+    groups[i] = make_group(groups[i].lenses, lenses, log_zooms, width, height, most[i]);
+    groups[i].neighbour = neighbour;
+  }
   return groups;
 }
 
@@ -958,9 +1104,13 @@ std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses, double wid
   return focus_groups(lenses, own_log_zooms(lenses), width, height);
 }
 
+double FocusGroup::disk_radius() const {
+  return std::max(reach + margin, blend ? blend->disk_radius() : 0.0);
+}
+
 bool footprint_clear_of_border(const FocusGroup& group, double width, double height) {
   // smooth_min rounds the footprint's edge where the border is nearer than 9/7 of the edge.
-  const double room = 1.3 * (group.reach + group.margin);
+  const double room = 1.3 * group.disk_radius();
   return group.centre.x() >= room && group.centre.y() >= room && width - group.centre.x() >= room &&
          height - group.centre.y() >= room;
 }
@@ -981,11 +1131,46 @@ double rim_distortion_bound(double zoom, double ratio) {
   return (1 + rim.b * rim.a) * (1 + power) - 1;
 }
 
+namespace {
+// The zoom a group fits on a mesh of cell side `cell` whose foci are held `band` wider, at most
+// its most zoom, and what bounds the ring that limits it. A blend (FocusGroup::blend) fits
+// where each ring fits the zoom it is given (the blend's shares of the zoom were found on a mesh
+// that follows the regions), the ring of weight w short of it by at most kBlendBeyond + kBlendSlack
+// (1 - w) / w of it (so a ring that comes in with a small weight does not make the zoom jump, and
+// the blend's radial scale, a weighed sum of its rings', stays positive).
+struct GroupFit {
+  double zoom;
+  Ring::Room room;
+  Eigen::Vector2d centre;  // of the ring that limits it
+};
+GroupFit group_fit(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,
+                   double band, double width, double height) {
+  constexpr double kBlendSlack = 0.1, kBlendBeyond = 0.05;
+  const Warp warp(group, lenses, cell, band, width, height);
+  GroupFit out{std::numeric_limits<double>::infinity(), {}, group.centre};
+  for (const Warp::Part& part : warp.parts) {
+    const double log_zoom = group.log_zoom + part.log_share;
+    const Ring::Room room = part.ring.min_ratio(log_zoom);
+    const double fit = group.blend
+                           ? std::exp(group.log_zoom) *
+                                 (zoom_of_room(room.ratio) / std::exp(log_zoom) + kBlendBeyond +
+                                  kBlendSlack * (1 - part.weight) / part.weight)
+                           : zoom_of_room(room.ratio);
+    if (fit < out.zoom) out = {fit, room, part.ring.centre};
+  }
+  // Held (a lens near a side).
+  if (group.most_zoom < out.zoom) {
+    out.zoom = std::min(out.zoom, group.most_zoom);
+    out.room.by = Ring::Room::By::kSide;
+    out.room.u = group.side;
+  }
+  return out;
+}
+}  // namespace
+
 double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,
                           double band, double width, double height) {
-  return std::min(
-      group.most_zoom,
-      zoom_of_room(Ring(group, lenses, cell, band, width, height).min_ratio(group.log_zoom).ratio));
+  return group_fit(group, lenses, cell, band, width, height).zoom;
 }
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
@@ -998,22 +1183,16 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
           return std::find(only->begin(), only->end(), k) != only->end();
         }))
       continue;
-    const Ring ring(group, lenses, cell, band, width, height);
-    Ring::Room room = ring.min_ratio(group.log_zoom);
-    double fit = zoom_of_room(room.ratio);
-    if (group.most_zoom < fit) {
-      fit = group.most_zoom;
-      room.by = Ring::Room::By::kSide;
-      room.u = group.side;
-    }
-    for (size_t k : group.lenses) fits[k] = fit;
+    const GroupFit fit = group_fit(group, lenses, cell, band, width, height);
+    const Ring::Room& room = fit.room;
+    for (size_t k : group.lenses) fits[k] = fit.zoom;
     if (!reasons) continue;
     std::string why;
     if (room.by == Ring::Room::By::kSide) {
       // The side the ray leaves by, and how far the group's regions are from it.
       Eigen::AlignedBox2d b;
       for (size_t k : group.lenses) b.extend(lenses[k].region.bounds());
-      const Eigen::Vector2d exits = ray_exits(ring.centre, room.u, width, height);
+      const Eigen::Vector2d exits = ray_exits(fit.centre, room.u, width, height);
       const bool vertical = exits.x() < exits.y();
       const char* side =
           vertical ? (room.u.x() > 0 ? "right" : "left") : (room.u.y() > 0 ? "bottom" : "top");
@@ -1053,8 +1232,8 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   const Eigen::Index n = V.rows();
   FocusField out;
   out.groups = focus_groups(lenses, log_zooms, width, height);
-  std::vector<Ring> rings;
-  for (const FocusGroup& g : out.groups) rings.emplace_back(g, lenses, cell, band, width, height);
+  std::vector<Warp> warps;
+  for (const FocusGroup& g : out.groups) warps.emplace_back(g, lenses, cell, band, width, height);
   FocusConstraints& c = out.constraints;
   c.focus.assign(size_t(n), -1);
   c.pinned.assign(size_t(n), 1);
@@ -1065,18 +1244,18 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
   parallel_for(pool, size_t(n), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d p = V.row(Eigen::Index(i)).transpose();
-      // The nearest focus, and the ring p is deepest in (smallest s over edge).
+      // The nearest focus, and the warp p is deepest in (smallest s over edge).
       double nearest = std::numeric_limits<double>::infinity(), deepest = 1;
       int closest = -1;
       size_t owner = 0;
-      Ring::Place owner_place;
+      Warp::Place owner_place;
       for (size_t g = 0; g < out.groups.size(); ++g) {
-        const Ring::Place place = rings[g].place(p);
+        Warp::Place place = warps[g].place(p);
         if (place.distance < nearest) nearest = place.distance, closest = int(g);
-        if (place.in_footprint() && place.s / place.edge < deepest) {
-          deepest = place.s / place.edge;
+        if (place.depth < deepest) {
+          deepest = place.depth;
           owner = g;
-          owner_place = place;
+          owner_place = std::move(place);
         }
       }
       c.pinned[i] = deepest == 1;
@@ -1090,11 +1269,11 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
         // edge, so the solve keeps the rim without a crease), with
         // the slack; a ray too short for the zoom has no radial solution: the bound then only
         // keeps the context from folding over itself (at most 20, a sliver).
-        const double k = rings[owner].radial(owner_place, out.groups[owner].log_zoom);
-        c.anisotropy(Eigen::Index(i)) = std::min(slack * std::max(1 / std::max(k, 1e-9), k), 20.0);
-        if (out.groups[owner].log_zoom > 0 && rings[owner].moves(owner_place))
-          out.start.row(Eigen::Index(i)) =
-              rings[owner].moved(owner_place, out.groups[owner].log_zoom).transpose();
+        const double log_zoom = out.groups[owner].log_zoom;
+        c.anisotropy(Eigen::Index(i)) =
+            std::min(slack * warps[owner].distortion(owner_place, log_zoom), 20.0);
+        if (log_zoom > 0 && warps[owner].moves(owner_place))
+          out.start.row(Eigen::Index(i)) = warps[owner].moved(p, owner_place, log_zoom).transpose();
       }
       out.level(Eigen::Index(i)) = c.pinned[i] ? 0.0 : 1.0;
     }
@@ -1104,13 +1283,14 @@ FocusField focus_field(const Eigen::MatrixX2d& V, const std::vector<Lens>& lense
 
 namespace {
 
-// Moves the rows of X (pixels) by a group's power-law `ring` (see focus_start) at `log_zoom`.
-void apply_ring(Eigen::MatrixX2d& X, const Ring& ring, double log_zoom, ThreadPool& pool) {
+// Moves the rows of X (pixels) by a group's `warp` (see focus_start) at `log_zoom`.
+void apply_warp(Eigen::MatrixX2d& X, const Warp& warp, double log_zoom, ThreadPool& pool) {
   if (log_zoom <= 0) return;
   parallel_for(pool, size_t(X.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
-      const Ring::Place p = ring.place(X.row(i).transpose());
-      if (p.in_footprint() && ring.moves(p)) X.row(i) = ring.moved(p, log_zoom).transpose();
+      const Eigen::Vector2d q = X.row(i).transpose();
+      const Warp::Place p = warp.place(q);
+      if (warp.moves(p)) X.row(i) = warp.moved(q, p, log_zoom).transpose();
     }
   });
 }
@@ -1221,12 +1401,12 @@ int relax_folds(Eigen::MatrixX2d& X, const Eigen::MatrixX2d& V, const Eigen::Mat
 std::function<Eigen::MatrixX2d(const Eigen::MatrixX2d&)> focus_map(
     const std::vector<Lens>& lenses, const std::vector<FocusGroup>& groups, double cell,
     double band, double width, double height, ThreadPool& pool) {
-  auto rings = std::make_shared<std::vector<Ring>>();
+  auto warps = std::make_shared<std::vector<Warp>>();
   for (const FocusGroup& group : groups)
-    rings->emplace_back(group, lenses, cell, band, width, height);
-  return [rings, groups, &pool](const Eigen::MatrixX2d& points) {
+    warps->emplace_back(group, lenses, cell, band, width, height);
+  return [warps, groups, &pool](const Eigen::MatrixX2d& points) {
     Eigen::MatrixX2d X = points;
-    for (size_t g = 0; g < groups.size(); ++g) apply_ring(X, (*rings)[g], groups[g].log_zoom, pool);
+    for (size_t g = 0; g < groups.size(); ++g) apply_warp(X, (*warps)[g], groups[g].log_zoom, pool);
     return X;
   };
 }
@@ -1245,14 +1425,14 @@ std::optional<Eigen::MatrixX2d> moved_focus_mesh(const PlanarMesh& mesh,
   require(was.size() == now.size(), "moved_focus_mesh", "the lenses must keep their groups");
   std::vector<Ring> rings_was, rings_now;
   for (size_t g = 0; g < was.size(); ++g) {
+    if (was[g].blend || now[g].blend) return std::nullopt;  // two rings: meshed anew
     rings_was.emplace_back(was[g], from, from_cell, focus_band(from, from_cell), width, height);
     rings_now.emplace_back(now[g], to, to_cell, focus_band(to, to_cell), width, height);
   }
   const Eigen::Vector2d shift = to[0].region.peak() - from[0].region.peak();
   const Eigen::Array2d stretch = to_box.sizes().array() / from_box.sizes().array();
   const double near = 2 * to_cell;
-  // focus_curves lists every region's curve before the footprints' edges.
-  const int regions = int(from.size());
+  const int regions = int(from.size());  // focus_curves: the regions', then the footprints'
   Eigen::MatrixX2d V(mesh.V.rows(), 2);
   parallel_for(pool, size_t(V.rows()), [&](size_t begin, size_t end) {
     for (Eigen::Index i = Eigen::Index(begin); i < Eigen::Index(end); ++i) {
@@ -1326,10 +1506,10 @@ std::vector<double> unfolding_zooms(const PlanarMesh& mesh, const std::vector<Le
   std::vector<double> zooms(lenses.size(), 1.0);
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     // The footprints are disjoint, so each group is tried on its own.
-    const Ring ring(group, lenses, cell, band, width, height);
+    const Warp warp(group, lenses, cell, band, width, height);
     for (const double fraction : kZoomFractions) {
       Eigen::MatrixX2d X = mesh.V;
-      apply_ring(X, ring, fraction * group.log_zoom, pool);
+      apply_warp(X, warp, fraction * group.log_zoom, pool);
       if (relax_folds(X, mesh.V, mesh.F, lenses, cell, band) > 0) continue;
       for (size_t k : group.lenses) zooms[k] = std::exp(fraction * group.log_zoom);
       break;
@@ -1411,17 +1591,22 @@ std::vector<MeshCurve> focus_curves(const std::vector<Lens>& lenses, double cell
   }
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
     if (group.log_zoom <= 0) continue;  // nothing moves
-    auto ring = std::make_shared<const Ring>(group, lenses, cell, band, width, height);
-    if (ring->inner_.size() == 1 && footprint_clear_of_border(group, width, height)) {
+    auto warp = std::make_shared<const Warp>(group, lenses, cell, band, width, height);
+    const Ring& ring = warp->ring();
+    if (warp->parts.size() == 1 && ring.inner_.size() == 1 &&
+        footprint_clear_of_border(group, width, height)) {
       // A circle about its centre: the footprint's edge is the group's disk.
-      curves.push_back(circle_curve(ring->centre, ring->disk_radius));
+      curves.push_back(circle_curve(ring.centre, ring.disk_radius));
       continue;
     }
     MeshCurve curve;
-    curve.level = [ring](const Eigen::Vector2d& p) { return ring->level(p); };
-    curve.project = [ring](const Eigen::Vector2d& p) { return ring->onto_edge(p); };
-    const double r = group.reach + group.margin + (ring->centre - group.centre).norm();
-    curve.bounds = Eigen::AlignedBox2d(ring->centre.array() - r, ring->centre.array() + r);
+    curve.level = [warp](const Eigen::Vector2d& p) { return warp->level(p); };
+    curve.project = [warp](const Eigen::Vector2d& p) { return warp->onto_edge(p); };
+    for (const Warp::Part& part : warp->parts) {
+      const Eigen::Vector2d c = part.ring.centre;
+      const double r = part.ring.disk_radius + (c - group.centre).norm();
+      curve.bounds.extend(Eigen::AlignedBox2d(c.array() - r, c.array() + r));
+    }
     curves.push_back(std::move(curve));
   }
   return curves;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -106,6 +107,17 @@ struct FocusGroup {
   /// A lens of the nearest group whose footprint made this group's margin shrink (the most), -1
   /// if none did.
   int neighbour = -1;
+  /// Where a lens near a side goes over from its own ring to the ring about the side's point (or
+  /// the corner), that ring's group, null if none: the warp is the blend of the two, the blend's
+  /// ring weighed blend_weight in (0, 1) at blend_zoom times the zoom, this group's 1 -
+  /// blend_weight at (1 - blend_weight blend_zoom) / (1 - blend_weight) times it, so the focus is
+  /// magnified by the zoom about a point between theirs and the warp is continuous
+  /// (docs/design.md, "The blend of two rings").
+  std::shared_ptr<const FocusGroup> blend;
+  double blend_weight = 0, blend_zoom = 1;
+  /// The radius of the disk about the centre that holds the footprint (of the blend's too),
+  /// pixels.
+  double disk_radius() const;
 };
 std::vector<FocusGroup> focus_groups(const std::vector<Lens>& lenses,
                                      const std::vector<double>& log_zooms, double width,

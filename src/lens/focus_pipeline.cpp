@@ -97,7 +97,7 @@ Eigen::AlignedBox2d FocusPipeline::solved_box(const std::vector<Lens>& lenses) c
   if (lenses.empty()) return image;
   Eigen::AlignedBox2d box;
   for (const FocusGroup& g : focus_groups(lenses, c_.width, c_.height)) {
-    const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.reach + g.margin);
+    const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.disk_radius());
     box.extend(g.centre - half).extend(g.centre + half);
   }
   return box.intersection(image);
@@ -351,6 +351,9 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   if (memo)
     *memo = MeshMemo{out, fit.box, fit.mesh, unfolding, std::move(on_curve), clear_of_border(out)};
   lower(unfolding);
+  // Lowered, a lens leaves a neighbour more room, whose footprint may then reach beyond the box
+  // (a blend's, FocusGroup::blend, moved the box's side): it is meshed again.
+  if (!fit.box.contains(solved_box(out))) fit.mesh = base_mesh(out, fit.box, draft, nullptr);
   return fit;
 }
 

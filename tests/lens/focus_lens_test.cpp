@@ -414,6 +414,38 @@ TEST(FocusLens, NearingASideInQuarterPixelsItsZoomIsContinuous) {
   }
 }
 
+// A circle (r 45 at zoom 3.5 on 1024 x 768, 553 px down) nearing the left side in 1 px steps from
+// 50 to 28 px off it, where its slide off the side gives way to the ring about the side's point:
+// the two rings are blended (FocusGroup::blend), so the centre of the magnified focus moves by at
+// most 25 px a pixel (one ring gave way to the other at once: 113 px between 32 and 31 px off
+// the side), the zoom by at most 0.03, and the focus is magnified exactly, nothing flipped.
+TEST(FocusLens, NearingASideItsMagnifiedFocusMovesContinuously) {
+  LensOptions options;
+  options.mesh = 100;
+  const GeometricLens geometric(1024, 768, options);
+  const double radius = 45;
+  double last = 0;
+  Eigen::Vector2d shown = Eigen::Vector2d::Zero();
+  for (int gap = 50; gap >= 28; --gap) {
+    SCOPED_TRACE(std::to_string(gap) + " px off the side");
+    const Eigen::Vector2d centre(radius + gap, 553);
+    const Lens lens{Region::circle(centre, radius), 3.5};
+    const LensResult r = geometric.solve({lens});
+    const double got = r.zoom_fits.at(0);
+    const std::optional<Eigen::Vector2d> now = WarpMap(r.warp).forward(centre);
+    ASSERT_TRUE(now.has_value());
+    if (gap < 50) {
+      EXPECT_LE((*now - shown).norm(), 25);
+      EXPECT_LE(std::abs(got - last), 0.03);
+    }
+    const TriangleDistortion measures = measure_triangles(r.warp);
+    EXPECT_EQ(summarize(measures).flipped, 0);
+    EXPECT_NEAR(measure_foci(r.warp, measures, {lens}).front().zoom, got, 3e-4);
+    last = got;
+    shown = *now;
+  }
+}
+
 // A circle 20 px below the top side, 160 px from the left one, magnified about the side's point
 // above it: its mesh's refinement split three edges at one point, whose merge was refused (each
 // step left a triangle flat with the third), and the solve refused the mesh as degenerate. Now
