@@ -683,6 +683,8 @@ struct Warp {
     double log_share;  // its log zoom less the group's
   };
   std::vector<Part> parts;
+  // A lens's own ring, the ring about a side's point, and the corner's (magnify_near_side).
+  static constexpr size_t kMostParts = 3;
 
   Warp(const FocusGroup& group, const std::vector<Lens>& lenses, double cell, double band,
        double width, double height) {
@@ -694,6 +696,7 @@ struct Warp {
     const double own = std::log((1 - t * group.blend_zoom) / (1 - t));
     const std::shared_ptr<const FocusGroup> blend = std::move(group.blend);
     group.log_zoom += own;  // (its slide is found at its own zoom)
+    require(parts.size() < kMostParts, "Warp", "a blend of more than three rings");
     parts.push_back(
         {Ring(group, lenses, cell, band, width, height), weight * (1 - t), log_share + own});
     if (blend)
@@ -704,18 +707,18 @@ struct Warp {
 
   // Where q lies on every ring's ray.
   struct Place {
-    std::vector<Ring::Place> at;
-    double distance = 0;  // from q to the group's nearest region (exact), pixels
-    double depth = 1;     // the least s / edge over the rings whose footprint holds q, else 1
+    std::array<Ring::Place, kMostParts> at;  // (a vector cost a heap block a vertex)
+    double distance = 0;                     // from q to the group's nearest region (exact), pixels
+    double depth = 1;  // the least s / edge over the rings whose footprint holds q, else 1
     bool in_footprint() const { return depth < 1; }
   };
   Place place(const Eigen::Vector2d& q) const {
     Place p;
-    for (const Part& part : parts) {
-      p.at.push_back(part.ring.place(q));
-      if (p.at.back().in_footprint()) p.depth = std::min(p.depth, p.at.back().s / p.at.back().edge);
+    for (size_t i = 0; i < parts.size(); ++i) {
+      p.at[i] = parts[i].ring.place(q);
+      if (p.at[i].in_footprint()) p.depth = std::min(p.depth, p.at[i].s / p.at[i].edge);
     }
-    p.distance = p.at.front().distance;
+    p.distance = p.at[0].distance;
     return p;
   }
   // Whether a ring moves q.

@@ -353,7 +353,8 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   lower(unfolding);
   // Lowered, a lens leaves a neighbour more room, whose footprint may then reach beyond the box
   // (a blend's, FocusGroup::blend, moved the box's side): it is meshed again.
-  if (!fit.box.contains(solved_box(out))) fit.mesh = base_mesh(out, fit.box, draft, nullptr);
+  if (fit.mesh_limited && !fit.box.contains(solved_box(out)))
+    fit.mesh = base_mesh(out, fit.box, draft, nullptr);
   return fit;
 }
 
