@@ -923,21 +923,21 @@ std::optional<double> magnify_near_side(FocusGroup& g, const Eigen::AlignedBox2d
   const double log_psi = kSideRamp * (gap - kSideSnap);
   const double w = std::clamp((kSideReach - gap) / (kSideReach - kSideBand), 0.0, 1.0);
   // The slide (a polygon's or a mask's ring about its centre, unslid), held: it fits at L and
-  // the ring about the side's point fits at L - ln psi (each ring is found only where the choice
-  // needs it: a ring is 720 rays).
+  // the ring about the side's point at L - ln psi (rings are found only where needed: 720 rays).
   const Ring sliding(g, lenses, g.reach, 0, width, height);
   const double off = fit_over(sliding, g.log_zoom);
   const double slid = off < 1 - kFitTolerance ? off : std::min(off, fit(g.log_zoom - log_psi));
-  // The ring about the side's point is blended in as the slide moves the focus from kBlendFrom
-  // to kSideSlide of the way to where that ring would, and from 2 kSideSnap r to kSideSnap r
-  // of the side for a lens that slides, whatever the fits (blend_weight).
-  const double travel =
-      (g.fixed - sliding.pull - unmoved).norm() / (at_side.fixed - unmoved).norm();
-  const double near = Rim::fade((travel - kBlendFrom) / (kSideSlide - kBlendFrom));
+  // The ring about the side's point is blended in as the slide moves the focus kBlendFrom to
+  // kSideSlide of the way to where that ring would (none where it is first tried: a slide along
+  // a side away from a corner blended the corner's ring in at once), and from 2 kSideSnap r to
+  // kSideSnap r off the side for a lens that slides, whatever the fits (blend_weight).
+  const Eigen::Vector2d to_side = at_side.fixed - unmoved;
+  const double travel = (g.fixed - sliding.pull - unmoved).dot(to_side) / to_side.squaredNorm();
+  const double near =
+      Rim::fade((travel - kBlendFrom) / (kSideSlide - kBlendFrom)) * Rim::fade(2 * w);
   const double snap = g.slides ? Rim::fade((2 * kSideSnap - gap) / kSideSnap) : 0.0;
   if (slid >= 1 - kFitTolerance && near == 0 && snap == 0) return slid;
-  // The ring about the side's point, held.
-  const double touching =
+  const double touching =  // the ring about the side's point, held
       w > 0 ? std::min(fit(g.log_zoom, &touched.emplace()), slid * std::pow(8.0, w)) : 0.0;
   const double t = blend_weight(slid, touching, near, snap, g.log_zoom);
   if (t == 1) take_side();

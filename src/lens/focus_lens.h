@@ -1,7 +1,13 @@
 #pragma once
 // The focus lens (LensModel::kFocus): the region given is magnified as a whole, by a similarity,
 // and the context gives way only within a finite footprint around it (docs/design.md, "Focus
-// lenses").
+// lenses"). Two properties of the engine, tested by sweeps (tests/lens/focus_lens_test.cpp):
+// the zoom a lens gets, and the warp, are continuous functions of each lens's place, size and
+// zoom and of the other lenses (where one ring gives way to another near a side the two are
+// blended, FocusGroup::blend; magnify_near_side holds the fits so the zoom has no step), and
+// asking for more never gives less (each lens is solved at the largest zoom up to the one asked
+// at which it fits, fitting_zooms). Where they do not hold yet (a mask without an outline near a
+// side, the mesh's own resolution): docs/design.md, "Weak, and next".
 
 #include <Eigen/Core>
 #include <functional>
