@@ -710,7 +710,6 @@ struct Warp {
     std::array<Ring::Place, kMostParts> at;  // (a vector cost a heap block a vertex)
     double distance = 0;                     // from q to the group's nearest region (exact), pixels
     double depth = 1;  // the least s / edge over the rings whose footprint holds q, else 1
-    bool in_footprint() const { return depth < 1; }
   };
   Place place(const Eigen::Vector2d& q) const {
     Place p;
@@ -755,8 +754,10 @@ struct Warp {
   }
   Eigen::Vector2d onto_edge(const Eigen::Vector2d& q) const {
     const Ring* least = &ring();
-    for (const Part& part : parts)
-      if (part.ring.level(q) < least->level(q)) least = &part.ring;
+    double lowest = least->level(q);
+    for (size_t i = 1; i < parts.size(); ++i)
+      if (const double level = parts[i].ring.level(q); level < lowest)
+        lowest = level, least = &parts[i].ring;
     return least->onto_edge(q);
   }
 };
@@ -1163,7 +1164,7 @@ GroupFit group_fit(const FocusGroup& group, const std::vector<Lens>& lenses, dou
   }
   // Held (a lens near a side).
   if (group.most_zoom < out.zoom) {
-    out.zoom = std::min(out.zoom, group.most_zoom);
+    out.zoom = group.most_zoom;
     out.room.by = Ring::Room::By::kSide;
     out.room.u = group.side;
   }
