@@ -307,6 +307,26 @@ TEST(FocusLens, ALensShortOfItsZoomIsToldWhatLimitsIt) {
       << ratio.zoom_fit_reasons[0];
 }
 
+// A lens held back by the room its neighbour leaves it is told so wherever the two stay apart,
+// though the fit then lowers it by a rounding (a lens r 150 asked 4 beside one asked 2, 900 px
+// away on a relief map, was told "the image's right side, 2205 px from the region", the side the
+// two would have as one). Moved apart in 25 px steps: the neighbour keeps its 2, the lens gets
+// more at each step.
+TEST(FocusLens, ALensHeldByItsNeighboursRoomIsToldSoAllTheWay) {
+  const GeometricLens geometric(4725, 4050);
+  double last = 0;
+  for (double gap = 900; gap <= 1100; gap += 25) {
+    const LensResult r = geometric.solve({Lens{Region::circle({1500, 2000}, 150), 4},
+                                          Lens{Region::circle({1500 + gap, 2000}, 120), 2}});
+    EXPECT_EQ(r.zoom_fits.at(1), 2) << gap;
+    EXPECT_TRUE(r.zoom_fit_reasons.at(1).empty()) << gap << ": " << r.zoom_fit_reasons[1];
+    EXPECT_LT(r.zoom_fits.at(0), 4) << gap;
+    EXPECT_GT(r.zoom_fits.at(0), last) << gap;
+    last = r.zoom_fits[0];
+    EXPECT_EQ(r.zoom_fit_reasons.at(0), "lens 2 beside it (lenses farther apart fit more)") << gap;
+  }
+}
+
 // Lenses magnified as one (their magnified foci overlap) are solved at their group's zoom, the
 // larger asked, lowered where the group does not fit: each is told the zoom it gets, and only the
 // one that gets less than asked is warned, with what limits the group and with which lens (the
