@@ -44,5 +44,6 @@ set(GEOLENS_LENS_SOURCES
   src/lens/lift.cpp
   src/lens/profile.cpp
   src/lens/shared_room.cpp
+  src/lens/stretched_frame.cpp
   src/lens/texture_map.cpp
 )

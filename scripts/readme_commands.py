@@ -46,6 +46,7 @@ SETUP = re.compile(r"scripts/\S+\.sh|cmake -S|cmake --install|pkg-config")
 MADE_ELSEWHERE = {
     "docs/demo_before_after.jpg": "scripts/demo.sh (the README's first command)",
     "docs/rim_before.jpg": "the power ring's rim before issue 28, kept for the comparison",
+    "docs/line_before.jpg": "a line of text solved in the image's frame, kept for the comparison",
     "docs/compare_focus_panel.jpg": "a crop of compare's panel.png around the focus lens",
     "docs/reproduction/sweep_zoom2.png": "scripts/reproduce_figures.sh",
     "docs/viewer.png": "docs/viewer_screenshot.sh",

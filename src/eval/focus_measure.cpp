@@ -9,6 +9,7 @@
 #include "geolens/eval/comparison.h"
 #include "geolens/warp/warp_map.h"
 #include "lens/focus_lens.h"
+#include "lens/stretched_frame.h"
 
 namespace geolens {
 
@@ -55,15 +56,18 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     lowest[k] = std::min(lowest[k], m);
     highest[k] = std::max(highest[k], m);
   }
-  // Beyond the footprints: outside every focus group's disk (focus_lens.h).
+  // Beyond the footprints: outside every focus group's disk (focus_lens.h), in the frame the
+  // lenses are solved in (stretched_frame.h: there an ellipse in the image).
+  const Eigen::Vector2d stretch = frame_stretch(lenses);
   const std::vector<FocusGroup> groups =
-      focus_groups(lenses, warp.screen_width, warp.screen_height);
+      focus_groups(stretch == Eigen::Vector2d::Ones() ? lenses : stretched(lenses, stretch),
+                   warp.screen_width * stretch.x(), warp.screen_height * stretch.y());
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
-    const Eigen::Vector2d p = warp.source.row(v).transpose();
+    const Eigen::Vector2d p = warp.source.row(v).transpose().cwiseProduct(stretch);
     bool beyond = true;
     for (const FocusGroup& g : groups) beyond = beyond && (p - g.centre).norm() >= g.disk_radius();
     if (!beyond) continue;
-    const size_t k = nearest_lens(lenses, p).first;
+    const size_t k = nearest_lens(lenses, p.cwiseQuotient(stretch)).first;
     out[k].displacement_beyond_footprint = std::max(
         out[k].displacement_beyond_footprint, (warp.screen.row(v) - warp.source.row(v)).norm());
   }

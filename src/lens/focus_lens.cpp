@@ -1179,7 +1179,7 @@ double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lens
 
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
                                   double width, double height, std::vector<std::string>* reasons,
-                                  const std::vector<size_t>* only) {
+                                  const std::vector<size_t>* only, const Eigen::Vector2d& stretch) {
   std::vector<double> fits(lenses.size());
   if (reasons) reasons->assign(lenses.size(), "");
   for (const FocusGroup& group : focus_groups(lenses, width, height)) {
@@ -1200,8 +1200,9 @@ std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, 
       const bool vertical = exits.x() < exits.y();
       const char* side =
           vertical ? (room.u.x() > 0 ? "right" : "left") : (room.u.y() > 0 ? "bottom" : "top");
-      const double gap = vertical ? (room.u.x() > 0 ? width - b.max().x() : b.min().x())
-                                  : (room.u.y() > 0 ? height - b.max().y() : b.min().y());
+      const double gap = vertical
+                             ? (room.u.x() > 0 ? width - b.max().x() : b.min().x()) / stretch.x()
+                             : (room.u.y() > 0 ? height - b.max().y() : b.min().y()) / stretch.y();
       why = "the image's " + std::string(side) + " side, " +
             std::to_string(int(std::lround(std::max(gap, 0.0)))) +
             " px from the region (a lens farther from it or smaller fits more)";

@@ -157,11 +157,14 @@ bool footprint_clear_of_border(const FocusGroup& group, double width, double hei
 /// the largest zoom up to the one asked at which this holds with the lens's own footprint at
 /// that zoom (a lens asking for more gets no less, and one that fits gets exactly its zoom).
 /// With `only`, the fits of the groups holding those lenses alone (the others' are 0): a search
-/// for one group's zoom among 200 lenses evaluated every group's ring at each step.
+/// for one group's zoom among 200 lenses evaluated every group's ring at each step. In a
+/// stretched frame (stretched_frame.h), `stretch` (its pixels per image pixel along x and y)
+/// turns the distances the reasons name into the image's pixels.
 std::vector<double> fitting_zooms(const std::vector<Lens>& lenses, double cell, double band,
                                   double width, double height,
                                   std::vector<std::string>* reasons = nullptr,
-                                  const std::vector<size_t>* only = nullptr);
+                                  const std::vector<size_t>* only = nullptr,
+                                  const Eigen::Vector2d& stretch = Eigen::Vector2d::Ones());
 /// The zoom at which `group` of `lenses` fits, as fitting_zooms tells it, with the margin the
 /// group has.
 double group_fitting_zoom(const FocusGroup& group, const std::vector<Lens>& lenses, double cell,

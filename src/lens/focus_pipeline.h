@@ -4,8 +4,10 @@
 // the mesh over their footprints made to follow the regions (or the last frame's, moved), the
 // focus field and its start, one solve.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lens/lens_pipeline.h"
@@ -17,6 +19,10 @@ struct MeshMemo;
 class FocusPipeline final : public LensPipeline {
  public:
   using LensPipeline::LensPipeline;
+  /// The pipeline of a frame stretched by `stretch` (context: the frame's size), which does not
+  /// stretch again; its reasons name distances in the image's pixels.
+  FocusPipeline(LensContext context, const Eigen::Vector2d& stretch)
+      : LensPipeline(std::move(context)), stretch_(stretch) {}
 
   LensModel model_for(const std::vector<Lens>&) const override { return LensModel::kFocus; }
   FittedLenses fitted(const std::vector<Lens>& lenses, SolveCache* cache,
@@ -55,6 +61,12 @@ class FocusPipeline final : public LensPipeline {
   // lenses were magnified as one.
   FittedLenses fitted_once(const std::vector<Lens>& lenses, bool merge, MeshMemo* memo, bool draft,
                            bool* merged = nullptr) const;
+  // fitted in this pipeline's own frame.
+  FittedLenses fitted_here(const std::vector<Lens>& lenses, SolveCache* cache, bool draft) const;
+
+  // A stretched frame's pixels per image pixel along x and y (stretched_frame.h); (1, 1) for the
+  // image's own pipeline.
+  Eigen::Vector2d stretch_ = Eigen::Vector2d::Ones();
 };
 
 }  // namespace geolens

@@ -9,6 +9,7 @@
 #include "lens/framing.h"
 #include "lens/lift_pipeline.h"
 #include "lens/solve_cache.h"
+#include "lens/stretched_frame.h"
 
 namespace geolens {
 
@@ -39,11 +40,13 @@ double LensPipeline::ms_since(Clock::time_point start) {
 LensResult LensPipeline::calibrated(const FittedLenses& fit, const PlanarMesh& mesh,
                                     const std::vector<double>& h, SolveCache& cache,
                                     const SolveControl& control) const {
+  const LensPipeline& solver = fit.frame ? *fit.frame : *this;
   LensResult r = calibrate(
       fit.lenses, model_for(fit.lenses), h, c_.options.zoom_tolerance,
       c_.options.max_calibration_solves, [&](const std::vector<double>& heights, int solve) {
-        return solve_once(fit.box, fit.lenses, mesh, heights, cache, control, solve);
+        return solver.solve_once(fit.box, fit.lenses, mesh, heights, cache, control, solve);
       });
+  if (fit.frame) unstretch(r, fit.stretch, int(std::lround(c_.width)), int(std::lround(c_.height)));
   r.zoom_fits = fit.zoom_fits;
   r.zoom_fit_reasons = fit.zoom_fit_reasons;
   r.mesh_limited = fit.mesh_limited;

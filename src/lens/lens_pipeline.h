@@ -24,6 +24,7 @@
 
 namespace geolens {
 
+class LensPipeline;
 class ThreadPool;
 struct SolveCache;
 
@@ -45,6 +46,11 @@ struct FittedLenses {
   std::vector<double> zoom_fits;
   std::vector<std::string> zoom_fit_reasons;
   bool mesh_limited = false;
+  /// kFocus: where the lenses are solved in a stretched frame (stretched_frame.h), the pipeline
+  /// of that frame and its stretch; `lenses`, `mesh` and `box` are then the frame's. Null: the
+  /// image's own.
+  std::shared_ptr<const LensPipeline> frame;
+  Eigen::Vector2d stretch = Eigen::Vector2d::Ones();
 };
 
 class LensPipeline {
@@ -82,7 +88,8 @@ class LensPipeline {
 
   /// The solve of `fit`'s lenses on `mesh` from the heights `h` (one per lens, pixels; kFocus:
   /// log zooms) until each lens's zoom is met (calibration), refitting the flattener in `cache`
-  /// or building it. Fills the fit's zooms and reasons in the result.
+  /// or building it (by the fit's frame where it has one, the result then in the image's
+  /// pixels). Fills the fit's zooms and reasons in the result.
   LensResult calibrated(const FittedLenses& fit, const PlanarMesh& mesh,
                         const std::vector<double>& h, SolveCache& cache,
                         const SolveControl& control) const;

@@ -31,8 +31,9 @@ struct FocusMeasure {
   /// distortion exceeds 0.05: the radius of the disk the lens disturbs as much.
   double footprint_radius = 0;
   /// The largest |screen - source| (pixels) of a mesh vertex nearest this lens and beyond every
-  /// footprint (outside every focus group's disk of radius reach + margin, focus_lens.h): 0
-  /// when everything beyond the footprints is left in place.
+  /// footprint (outside every focus group's disk of radius reach + margin, focus_lens.h, in the
+  /// frame a thin polygon is solved in, stretched_frame.h): 0 when everything beyond the
+  /// footprints is left in place.
   double displacement_beyond_footprint = 0;
 };
 
