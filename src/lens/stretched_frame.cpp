@@ -18,7 +18,7 @@ double stretch_of_aspect(double aspect) {
 Eigen::Vector2d frame_stretch(const std::vector<Lens>& lenses) {
   Eigen::Vector2d out = Eigen::Vector2d::Constant(lenses.empty() ? 1.0 : kMostStretch);
   for (const Lens& lens : lenses) {
-    if (lens.region.kind() != "polygon") return Eigen::Vector2d::Ones();
+    if (!lens.region.outline()) return Eigen::Vector2d::Ones();
     const Eigen::Vector2d size = lens.region.bounds().sizes();
     out = out.cwiseMin(Eigen::Vector2d(stretch_of_aspect(size.y() / size.x()),
                                        stretch_of_aspect(size.x() / size.y())));

@@ -15,19 +15,21 @@
 
 namespace geolens {
 
-/// The stretch of the frame `lenses` are solved in: per lens, along y for a polygon wider than
-/// tall, along x for one taller than wide, by 1 up to a bounding box of aspect kStretchFrom and
-/// kMostStretch from kStretchFull, a smoothstep between (so the zoom a lens gets is continuous
-/// in its shape); (1, 1) for a circle, a mask or any other region. Of all lenses, the least
-/// along each axis (one circle anywhere keeps the frame). Continuous in the lenses' shapes, and
-/// the same wherever they are.
+/// The stretch of the frame `lenses` are solved in: per lens, along y for a region with an
+/// outline (a polygon, a traced mask blob: Region::outline) wider than tall, along x for one
+/// taller than wide, by 1 up to a bounding box of aspect kStretchFrom and kMostStretch from
+/// kStretchFull, a smoothstep between (so the zoom a lens gets is continuous in its shape);
+/// (1, 1) for a circle or a region without an outline. Of all lenses, the least along each axis
+/// (one circle anywhere keeps the frame). Continuous in the lenses' shapes, and the same
+/// wherever they are.
 Eigen::Vector2d frame_stretch(const std::vector<Lens>& lenses);
 
 /// The aspect from which a polygon is stretched, to which it is stretched in full, and by how
 /// much then.
 constexpr double kStretchFrom = 4, kStretchFull = 8, kMostStretch = 1.5;
 
-/// `lenses` in the frame stretched by `stretch` (every region a polygon: frame_stretch).
+/// `lenses` in the frame stretched by `stretch`, each region the polygon of its outline stretched
+/// (every region has one where frame_stretch stretches).
 std::vector<Lens> stretched(const std::vector<Lens>& lenses, const Eigen::Vector2d& stretch);
 
 /// A result solved in the frame stretched by `stretch`, in the image's pixels: its warp (source

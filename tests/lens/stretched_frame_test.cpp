@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geolens/eval/comparison.h"
+#include "geolens/io/image.h"
 #include "geolens/lens/geometric_lens.h"
 #include "geolens/lens/lens_session.h"
 #include "geolens/measure/distortion.h"
@@ -22,6 +23,16 @@ namespace {
 
 Lens box(double x0, double y0, double x1, double y1, double zoom) {
   return Lens{Region::polygon({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}), zoom};
+}
+
+// A phrase of a line of text (make_figure_inputs's page) as a mask's blob, 238 x 20 px (its
+// traced outline); with `hole`, a hole in it (then no outline).
+Lens masked_phrase(double zoom, bool hole = false) {
+  Image mask(1024, 1024, 1);
+  for (int y = 300; y < 320; ++y)
+    for (int x = 362; x < 600; ++x)
+      mask.at(x, y)[0] = hole && y > 305 && y < 314 && x > 400 && x < 420 ? 0 : 255;
+  return Lens{Region::from_mask(mask).front(), zoom};
 }
 
 TEST(FrameStretch, GrowsContinuouslyWithTheAspectAndACircleKeepsTheFrame) {
@@ -42,13 +53,16 @@ TEST(FrameStretch, GrowsContinuouslyWithTheAspectAndACircleKeepsTheFrame) {
             Eigen::Vector2d::Ones());
   EXPECT_EQ(frame_stretch({box(100, 10, 500, 50, 2), Lens{Region::circle({300, 300}, 40), 2}}),
             Eigen::Vector2d::Ones());
+  // A mask's blob by its outline; one with a hole has none.
+  EXPECT_EQ(frame_stretch({masked_phrase(2)}), Eigen::Vector2d(1, kMostStretch));
+  EXPECT_EQ(frame_stretch({masked_phrase(2, true)}), Eigen::Vector2d::Ones());
 }
 
 // The line of text with its heading on make_figure_inputs's page (examples/text_line_polygon.txt,
 // 266 x 20 px, 226 px below the top side) gets 2.8 of the zoom 3 asked and a phrase of a line
-// below it (238 x 20) gets 3 (1.83 and 2.48 in the image's frame, held by the top side: a ring
-// about a point has, above a thin line, the line's own extent along it), magnified exactly as a
-// whole, nothing flipped and nothing beyond the footprint moved.
+// below it (238 x 20), as a polygon or as a mask, gets 3 (1.83, 2.48 and 2.48 in the image's
+// frame, held by the top side: a ring about a point has, above a thin line, the line's own extent
+// along it), magnified exactly as a whole, nothing flipped and nothing beyond the footprint moved.
 TEST(StretchedFrame, ALineOfTextInAPageGetsItsZoom) {
   const GeometricLens page(1024, 1024);
   struct Line {
@@ -56,7 +70,8 @@ TEST(StretchedFrame, ALineOfTextInAPageGetsItsZoom) {
     double least;
   };
   for (const auto& [line, least] :
-       {Line{box(358, 226, 624, 246, 3), 2.8}, Line{box(362, 300, 600, 320, 3), 3.0}}) {
+       {Line{box(358, 226, 624, 246, 3), 2.8}, Line{box(362, 300, 600, 320, 3), 3.0},
+        Line{masked_phrase(3), 3.0}}) {
     const LensResult r = page.solve({line});
     const TriangleDistortion measures = measure_triangles(r.warp);
     const FocusMeasure focus = measure_foci(r.warp, measures, {line}).front();
