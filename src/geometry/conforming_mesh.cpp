@@ -594,14 +594,17 @@ void refine_where_bent(Work& w, const std::vector<MeshCurve>& curves,
 void merge_coincident(Work& w) {
   std::vector<int> into(w.V.size());
   std::iota(into.begin(), into.end(), 0);
-  std::vector<std::vector<int>> members(w.V.size());  // of each root, the vertices merged into it
-  for (size_t v = 0; v < w.V.size(); ++v) members[v] = {int(v)};
+  // Of each root, the vertices merged into it, as a list through `next` from the root to `last`
+  // (a vector a vertex was a heap block each, a tenth of a circle's first placement).
+  std::vector<int> next(w.V.size(), -1), last(w.V.size());
+  std::iota(last.begin(), last.end(), 0);
   auto root = [&](int v) {
     while (into[size_t(v)] != v) v = into[size_t(v)];
     return v;
   };
+  const double within = w.on_curve * w.on_curve;
   auto coincident = [&](int a, int b) {
-    return (w.V[size_t(a)] - w.V[size_t(b)]).norm() <= w.on_curve;
+    return (w.V[size_t(a)] - w.V[size_t(b)]).squaredNorm() <= within;
   };
   // Whether merging root b into root a keeps every triangle at b that is left counter-clockwise
   // and not flat (its height over its longest edge above 1e-9: a merge near a side once left
@@ -610,7 +613,7 @@ void merge_coincident(Work& w) {
   // their merge in turn (the refinement once split three edges at one point: the first merge of
   // the three was refused for the triangle the third made flat, and the mesh kept all three).
   auto keeps_orientation = [&](int a, int b) {
-    for (int m : members[size_t(b)])
+    for (int m = b; m >= 0; m = next[size_t(m)])
       for (int f : w.around[size_t(m)]) {
         Triangle u;
         for (size_t k = 0; k < 3; ++k) {
@@ -632,8 +635,8 @@ void merge_coincident(Work& w) {
       if (a > b) std::swap(a, b);
       if (!keeps_orientation(a, b)) continue;
       into[size_t(b)] = a;
-      members[size_t(a)].insert(members[size_t(a)].end(), members[size_t(b)].begin(),
-                                members[size_t(b)].end());
+      next[size_t(last[size_t(a)])] = b;
+      last[size_t(a)] = last[size_t(b)];
       if (w.curve_of[size_t(a)] < 0) w.curve_of[size_t(a)] = w.curve_of[size_t(b)];
       merged = true;
     }
