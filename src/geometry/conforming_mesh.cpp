@@ -595,7 +595,7 @@ void merge_coincident(Work& w) {
   std::vector<int> into(w.V.size());
   std::iota(into.begin(), into.end(), 0);
   // Of each root, the vertices merged into it, as a list through `next` from the root to `last`
-  // (a vector a vertex was a heap block each, a tenth of a circle's first placement).
+  // (a vector a vertex was a heap block each: 3 % of a circle's first placement).
   std::vector<int> next(w.V.size(), -1), last(w.V.size());
   std::iota(last.begin(), last.end(), 0);
   auto root = [&](int v) {

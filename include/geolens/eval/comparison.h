@@ -32,7 +32,7 @@ struct FocusMeasure {
   double footprint_radius = 0;
   /// The largest |screen - source| (pixels) of a mesh vertex nearest this lens and beyond every
   /// footprint (outside every focus group's disk of radius reach + margin, focus_lens.h, in the
-  /// frame a thin polygon is solved in, stretched_frame.h): 0 when everything beyond the
+  /// frame a thin region is solved in, stretched_frame.h): 0 when everything beyond the
   /// footprints is left in place.
   double displacement_beyond_footprint = 0;
 };
