@@ -37,7 +37,8 @@ Eigen::Vector2d ray_exits(const Eigen::Vector2d& c, const Eigen::Vector2d& u, do
 // and 0.5). Both partial derivatives lie in [0, 1] and sum to at most 1.
 double smooth_min(double a, double b) {
   const double width = 0.125 * (a + b);
-  if (!(width > 0 && std::isfinite(width)) || std::abs(a - b) >= width) return std::min(a, b);
+  // (also where either is infinite, a ray along a side, or not a number)
+  if (!(std::abs(a - b) < width)) return std::min(a, b);
   const double h = (width - std::abs(a - b)) / width;
   return std::min(a, b) - 0.25 * h * h * width;
 }
