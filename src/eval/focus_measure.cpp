@@ -60,14 +60,15 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
   // lenses are solved in (stretched_frame.h: there an ellipse in the image).
   const Eigen::Vector2d stretch = frame_stretch(lenses);
   const std::vector<FocusGroup> groups =
-      focus_groups(stretch == Eigen::Vector2d::Ones() ? lenses : stretched(lenses, stretch),
-                   warp.screen_width * stretch.x(), warp.screen_height * stretch.y());
+      focus_groups(stretched(lenses, stretch), warp.screen_width * stretch.x(),
+                   warp.screen_height * stretch.y());
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
-    const Eigen::Vector2d p = warp.source.row(v).transpose().cwiseProduct(stretch);
+    const Eigen::Vector2d p = warp.source.row(v).transpose(), in_frame = p.cwiseProduct(stretch);
     bool beyond = true;
-    for (const FocusGroup& g : groups) beyond = beyond && (p - g.centre).norm() >= g.disk_radius();
+    for (const FocusGroup& g : groups)
+      beyond = beyond && (in_frame - g.centre).norm() >= g.disk_radius();
     if (!beyond) continue;
-    const size_t k = nearest_lens(lenses, p.cwiseQuotient(stretch)).first;
+    const size_t k = nearest_lens(lenses, p).first;
     out[k].displacement_beyond_footprint = std::max(
         out[k].displacement_beyond_footprint, (warp.screen.row(v) - warp.source.row(v)).norm());
   }

@@ -285,10 +285,8 @@ FittedLenses FocusPipeline::unfitted(const std::vector<Lens>& lenses) const {
 FittedLenses FocusPipeline::fitted(const std::vector<Lens>& lenses, SolveCache* cache,
                                    bool draft) const {
   for (const Lens& lens : lenses) validate_lens(lens, c_.width, c_.height);
-  // Thin regions, solved in a frame stretched across them (a frame's pipeline does not stretch
-  // again).
-  const bool in_frame = stretch_ != Eigen::Vector2d::Ones();
-  const Eigen::Vector2d stretch = in_frame ? Eigen::Vector2d::Ones() : frame_stretch(lenses);
+  // Thin regions, solved in a frame stretched across them.
+  const Eigen::Vector2d stretch = frame_stretch(lenses);
   if (stretch == Eigen::Vector2d::Ones()) return fitted_here(lenses, cache, draft);
   auto frame = std::make_shared<const FocusPipeline>(
       LensContext{c_.width * stretch.x(), c_.height * stretch.y(), c_.options, Grid{}, c_.pool},

@@ -19,8 +19,9 @@ struct MeshMemo;
 class FocusPipeline final : public LensPipeline {
  public:
   using LensPipeline::LensPipeline;
-  /// The pipeline of a frame stretched by `stretch` (context: the frame's size), which does not
-  /// stretch again; its reasons name distances in the image's pixels.
+  /// The pipeline of a frame stretched by `stretch` (context: the frame's size), used through
+  /// FittedLenses::frame (fitted makes it; it fits with fitted_here, never stretching again);
+  /// its reasons name distances in the image's pixels.
   FocusPipeline(LensContext context, const Eigen::Vector2d& stretch)
       : LensPipeline(std::move(context)), stretch_(stretch) {}
 

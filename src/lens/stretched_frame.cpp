@@ -28,6 +28,7 @@ Eigen::Vector2d frame_stretch(const std::vector<Lens>& lenses) {
 
 std::vector<Lens> stretched(const std::vector<Lens>& lenses, const Eigen::Vector2d& stretch) {
   std::vector<Lens> out = lenses;
+  if (stretch == Eigen::Vector2d::Ones()) return out;
   for (Lens& lens : out) {
     std::vector<Eigen::Vector2d> v = lens.region.outline().value();
     for (Eigen::Vector2d& p : v) p = p.cwiseProduct(stretch);

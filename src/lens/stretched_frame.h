@@ -29,7 +29,7 @@ Eigen::Vector2d frame_stretch(const std::vector<Lens>& lenses);
 constexpr double kStretchFrom = 4, kStretchFull = 8, kMostStretch = 1.5;
 
 /// `lenses` in the frame stretched by `stretch`, each region the polygon of its outline stretched
-/// (every region has one where frame_stretch stretches).
+/// (every region has one where frame_stretch stretches); as they are for a stretch of (1, 1).
 std::vector<Lens> stretched(const std::vector<Lens>& lenses, const Eigen::Vector2d& stretch);
 
 /// A result solved in the frame stretched by `stretch`, in the image's pixels: its warp (source
