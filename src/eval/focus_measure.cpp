@@ -57,11 +57,12 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     highest[k] = std::max(highest[k], m);
   }
   // Beyond the footprints: outside every focus group's disk (focus_lens.h), in the frame the
-  // lenses are solved in (stretched_frame.h: there an ellipse in the image).
+  // lenses are solved in (stretched_frame.h: there an ellipse in the image), as the solved box
+  // holds them (a mesh that follows the regions).
   const Eigen::Vector2d stretch = frame_stretch(lenses);
   const std::vector<FocusGroup> groups =
       focus_groups(stretched(lenses, stretch), warp.screen_width * stretch.x(),
-                   warp.screen_height * stretch.y());
+                   warp.screen_height * stretch.y(), FitMesh{});
   for (Eigen::Index v = 0; v < warp.source.rows(); ++v) {
     const Eigen::Vector2d p = warp.source.row(v).transpose(), in_frame = p.cwiseProduct(stretch);
     bool beyond = true;

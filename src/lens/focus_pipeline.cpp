@@ -48,6 +48,8 @@ constexpr int kFinestGrid = 2;
 // The fit's search: rounds (a group lowered may split into groups that share room differently)
 // of largest_fitting_log_zoom's halvings of the group's log zoom.
 constexpr int kFitRounds = 3;
+// The most times the solved box grows to hold the footprints on its own mesh (solved_box).
+constexpr int kBoxRounds = 4;
 
 // Whether lenses `to` are lenses `from` moved, all by one translation: the same shapes, zooms
 // and footprints (only circles and polygons are compared; other regions are never the same).
@@ -81,7 +83,7 @@ bool moved_only(const std::vector<Lens>& from, const std::vector<Lens>& to) {
 // told it got 2.6 of 3, limited by a side, where it was shown at 3.3).
 void report_group_zooms(const std::vector<Lens>& asked, const std::vector<Lens>& solved,
                         double width, double height, FittedLenses& fit) {
-  for (const FocusGroup& group : focus_groups(solved, width, height)) {
+  for (const FocusGroup& group : focus_groups(solved, width, height, FitMesh{})) {
     double zoom = 1;  // exp(group.log_zoom), exactly the zoom of a lens alone
     for (size_t k : group.lenses) zoom = std::max(zoom, solved[k].zoom);
     for (size_t k : group.lenses) {
@@ -97,12 +99,25 @@ void report_group_zooms(const std::vector<Lens>& asked, const std::vector<Lens>&
 Eigen::AlignedBox2d FocusPipeline::solved_box(const std::vector<Lens>& lenses) const {
   const Eigen::AlignedBox2d image(Eigen::Vector2d::Zero(), Eigen::Vector2d(c_.width, c_.height));
   if (lenses.empty()) return image;
-  Eigen::AlignedBox2d box;
-  for (const FocusGroup& g : focus_groups(lenses, c_.width, c_.height)) {
-    const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.disk_radius());
-    box.extend(g.centre - half).extend(g.centre + half);
+  auto holding = [&](Eigen::AlignedBox2d box, const FitMesh& mesh) {
+    for (const FocusGroup& g : focus_groups(lenses, c_.width, c_.height, mesh)) {
+      const Eigen::Vector2d half = Eigen::Vector2d::Constant(g.disk_radius());
+      box.extend(g.centre - half).extend(g.centre + half);
+    }
+    return box.intersection(image);
+  };
+  // The footprints as the regions' own extents give them, then as the mesh of the box holds
+  // them (a lens near a side may be magnified about the side's point on it, its footprint
+  // larger: two 10 px polygons beside sides, whose footprints reached beyond the box, were
+  // magnified 1.56 where solved at 1.64), until the box holds them on its own mesh.
+  Eigen::AlignedBox2d box = holding(Eigen::AlignedBox2d(), FitMesh{});
+  for (int round = 0; round < kBoxRounds; ++round) {
+    const double cell = cell_size(box, lenses);
+    const Eigen::AlignedBox2d grown = holding(box, {cell, focus_band(lenses, cell)});
+    if (grown.min() == box.min() && grown.max() == box.max()) break;
+    box = grown;
   }
-  return box.intersection(image);
+  return box;
 }
 
 int FocusPipeline::grid_vertices(const Eigen::AlignedBox2d& box,
@@ -147,8 +162,8 @@ BaseMesh FocusPipeline::base_mesh(const std::vector<Lens>& lenses, Eigen::Aligne
   const double band = focus_band(lenses, cell);
   MeshRefinement refine;
   if (!draft && c_.options.mesh_tolerance > 0) {
-    refine.map = focus_map(lenses, focus_groups(lenses, c_.width, c_.height), cell, band, c_.width,
-                           c_.height, *c_.pool);
+    refine.map = focus_map(lenses, focus_groups(lenses, c_.width, c_.height, {cell, band}), cell,
+                           band, c_.width, c_.height, *c_.pool);
     // No coarser than kRelativeTolerance of the smallest region's reach either: the start's
     // shape across a triangle is off by about its position error over its size, so a small
     // lens needs a finer tolerance for the same shape (a 20 px circle at zoom 3, footprint
@@ -165,9 +180,12 @@ BaseMesh FocusPipeline::base_mesh(const std::vector<Lens>& lenses, Eigen::Aligne
   return mesh;
 }
 
-// Whether every focus group's footprint is clear of the image border (footprint_clear_of_border).
-bool FocusPipeline::clear_of_border(const std::vector<Lens>& lenses) const {
-  const std::vector<FocusGroup> groups = focus_groups(lenses, c_.width, c_.height);
+// footprint_clear_of_border, on the mesh the lenses are solved on.
+bool FocusPipeline::clear_of_border(const std::vector<Lens>& lenses,
+                                    const Eigen::AlignedBox2d& box) const {
+  const double cell = cell_size(box, lenses);
+  const std::vector<FocusGroup> groups =
+      focus_groups(lenses, c_.width, c_.height, {cell, focus_band(lenses, cell)});
   return std::all_of(groups.begin(), groups.end(), [&](const FocusGroup& g) {
     return footprint_clear_of_border(g, c_.width, c_.height);
   });
@@ -184,7 +202,7 @@ std::optional<BaseMesh> FocusPipeline::moved_mesh(const MeshMemo& memo,
                                                   Eigen::AlignedBox2d& box) const {
   box = solved_box(lenses);
   BaseMesh mesh = memo.mesh;
-  if (memo.clear && clear_of_border(lenses)) {
+  if (memo.clear && clear_of_border(lenses, box)) {
     mesh.V.rowwise() += (box.min() - memo.box.min()).transpose();
     return mesh;
   }
@@ -228,7 +246,7 @@ std::vector<Lens> FocusPipeline::fitting(const std::vector<Lens>& lenses,
     const std::vector<double> fits = fits_of(out, nullptr);
     std::vector<Lens> lowered = out;
     bool fit = true;
-    for (const FocusGroup& group : focus_groups(out, width, height)) {
+    for (const FocusGroup& group : focus_groups(out, width, height, FitMesh{})) {
       auto members_fit = [&](const std::vector<Lens>& at, const std::vector<double>& f) {
         return std::none_of(group.lenses.begin(), group.lenses.end(),
                             [&](size_t k) { return short_of(f[k], at[k].zoom, kRounding); });
@@ -322,7 +340,7 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   std::vector<Lens>& out = fit.lenses;
   out = fitting(lenses, fit.zoom_fit_reasons, merge);
   if (merged) {
-    const std::vector<FocusGroup> groups = focus_groups(out, c_.width, c_.height);
+    const std::vector<FocusGroup> groups = focus_groups(out, c_.width, c_.height, FitMesh{});
     *merged = std::any_of(groups.begin(), groups.end(),
                           [](const FocusGroup& g) { return g.lenses.size() > 1; });
   }
@@ -371,7 +389,8 @@ FittedLenses FocusPipeline::fitted_once(const std::vector<Lens>& lenses, bool me
   const std::vector<double> unfolding =
       unfolding_zooms(fit.mesh, out, cell, focus_band(out, cell), c_.width, c_.height, *c_.pool);
   if (memo)
-    *memo = MeshMemo{out, fit.box, fit.mesh, unfolding, std::move(on_curve), clear_of_border(out)};
+    *memo = MeshMemo{
+        out, fit.box, fit.mesh, unfolding, std::move(on_curve), clear_of_border(out, fit.box)};
   lower(unfolding);
   // Lowered, a lens leaves a neighbour more room, whose footprint may then reach beyond the box
   // (a blend's, FocusGroup::blend, moved the box's side): it is meshed again.

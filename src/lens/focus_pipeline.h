@@ -50,7 +50,8 @@ class FocusPipeline final : public LensPipeline {
   // conform_mesh gives it.
   BaseMesh base_mesh(const std::vector<Lens>& lenses, Eigen::AlignedBox2d& box, bool draft,
                      std::vector<int>* on_curve) const;
-  bool clear_of_border(const std::vector<Lens>& lenses) const;
+  // Whether every focus group's footprint, on the mesh of `box`, is clear of the image border.
+  bool clear_of_border(const std::vector<Lens>& lenses, const Eigen::AlignedBox2d& box) const;
   std::optional<BaseMesh> moved_mesh(const MeshMemo& memo, const std::vector<Lens>& lenses,
                                      Eigen::AlignedBox2d& box) const;
   // The lenses at the largest zooms up to theirs that fit where they are, their footprints at

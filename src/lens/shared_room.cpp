@@ -104,15 +104,16 @@ const Unit& SharedRoom::unit_of(const std::vector<size_t>& members) {
   auto fits = [&](double log_zoom) {
     const std::vector<Lens> group = at(members, log_zoom);
     const FitMesh mesh = mesh_of_(group);
-    const double fit = group_fitting_zoom(focus_group_of(group, width_, height_), group, mesh.cell,
-                                          mesh.band, width_, height_);
+    const double fit = group_fitting_zoom(focus_group_of(group, width_, height_, mesh), group,
+                                          mesh.cell, mesh.band, width_, height_);
     return fit >= std::exp(log_zoom) * (1 - 1e-9);
   };
   u.cap = fits(u.asked) ? u.asked : largest_fitting_log_zoom(u.asked, fits);
   const std::vector<Lens> group = at(members, u.cap);
-  const FocusGroup g = focus_group_of(group, width_, height_);
+  const FitMesh mesh = mesh_of_(group);
+  const FocusGroup g = focus_group_of(group, width_, height_, mesh);
   u.centre = g.centre;
-  u.reach = g.reach + mesh_of_(group).band;
+  u.reach = g.reach + mesh.band;
   return known_.emplace(members, std::move(u)).first->second;
 }
 

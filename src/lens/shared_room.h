@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geolens/lens/lens.h"
+#include "lens/focus_lens.h"
 
 namespace geolens {
 
@@ -17,10 +18,7 @@ namespace geolens {
 double largest_fitting_log_zoom(double below, const std::function<bool(double)>& fits);
 
 /// The mesh a set of lenses would be fitted on where they are the only ones (GeometricLens: the
-/// cell of their solved box and the focus band on it), pixels.
-struct FitMesh {
-  double cell, band;
-};
+/// cell of their solved box and the focus band on it).
 using FitMeshOf = std::function<FitMesh(const std::vector<Lens>&)>;
 
 /// `lenses` (focus model, on a width x height image) with the zooms that lenses near each other
