@@ -108,7 +108,7 @@ Eigen::AlignedBox2d FocusPipeline::solved_box(const std::vector<Lens>& lenses) c
   };
   // The footprints as the regions' own extents give them, then as the mesh of the box holds
   // them (a lens near a side may be magnified about the side's point on it, its footprint
-  // larger: two 10 px polygons beside sides, whose footprints reached beyond the box, were
+  // larger: polygons of 10 and 15 px beside sides, whose footprints reached beyond the box, were
   // magnified 1.56 where solved at 1.64), until the box holds them on its own mesh.
   Eigen::AlignedBox2d box = holding(Eigen::AlignedBox2d(), FitMesh{});
   for (int round = 0; round < kBoxRounds; ++round) {
