@@ -57,8 +57,11 @@ std::vector<FocusMeasure> measure_foci(const WarpMesh& warp, const TriangleDisto
     highest[k] = std::max(highest[k], m);
   }
   // Beyond the footprints: outside every focus group's disk (focus_lens.h), in the frame the
-  // lenses are solved in (stretched_frame.h: there an ellipse in the image), as the solved box
-  // holds them (a mesh that follows the regions).
+  // lenses are solved in (stretched_frame.h: there an ellipse in the image), on a mesh that
+  // follows the regions (the warp does not say its cell). Where the mesh does not follow one (a
+  // mask without an outline), its band may move a group near a side to the side's point, whose
+  // footprint is larger, and a vertex there would count as beyond: none did on the mask with a
+  // hole dragged to a side (test AMaskWithAHoleNearingASideKeepsAContinuousZoom).
   const Eigen::Vector2d stretch = frame_stretch(lenses);
   const std::vector<FocusGroup> groups =
       focus_groups(stretched(lenses, stretch), warp.screen_width * stretch.x(),

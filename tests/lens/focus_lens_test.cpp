@@ -613,9 +613,10 @@ TEST(FocusLens, APolygonNearingASideKeepsAContinuousZoom) {
 // An ellipse mask with a hole (semi-axes 50 x 30, the hole's 15 x 10: its pixel squares, no
 // outline, so the mesh holds its focus sqrt 2 cells wider) at zoom 3 on 512 x 384 (mesh 60),
 // dragged 1 px a step from 80 px to 2 px off the left side: its zoom changes by at most 0.05 a
-// step and never falls below 1.3, the focus exact. Its choice of rings near the side measured them
-// without that band, so it chose the ring about its centre, which the fit then found 1.03 room
-// for at 35 px, and sprang to 1.59 at 34 (the ring about the side's point).
+// step and never falls below 1.3, the focus exact, nothing beyond the footprint moved. Its choice
+// of rings near the side measured them without that band, so it chose the ring about its centre,
+// which the fit then found 1.03 room for at 35 px, and sprang to 1.59 at 34 (the ring about the
+// side's point).
 TEST(FocusLens, AMaskWithAHoleNearingASideKeepsAContinuousZoom) {
   constexpr int kWidth = 512, kHeight = 384;
   LensOptions options;
@@ -646,6 +647,7 @@ TEST(FocusLens, AMaskWithAHoleNearingASideKeepsAContinuousZoom) {
     const FocusMeasure focus = measure_foci(r.warp, measures, {lens}).front();
     EXPECT_NEAR(focus.zoom, got, 1e-4 * got);
     EXPECT_LE(focus.uniformity, 1.0001);
+    EXPECT_EQ(focus.displacement_beyond_footprint, 0);
     last = got;
   }
 }
