@@ -47,6 +47,8 @@ MADE_ELSEWHERE = {
     "docs/demo_before_after.jpg": "scripts/demo.sh (the README's first command)",
     "docs/rim_before.jpg": "the power ring's rim before issue 28, kept for the comparison",
     "docs/line_before.jpg": "a line of text solved in the image's frame, kept for the comparison",
+    "docs/paragraph_margin_before.jpg": "a paragraph at the margin as 5a76c1f (before issue 28) "
+    "solved it, kept for the comparison",
     "docs/compare_focus_panel.jpg": "a crop of compare's panel.png around the focus lens",
     "docs/reproduction/sweep_zoom2.png": "scripts/reproduce_figures.sh",
     "docs/viewer.png": "docs/viewer_screenshot.sh",
